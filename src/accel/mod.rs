@@ -1,0 +1,89 @@
+//! Ray queries over a Scene's triangles: one `Accel` trait (closest hit, any hit) and its backends.
+//! `bvh` is pure Rust; `embree` wraps Intel Embree 4. Both return the same hits for the same rays.
+
+pub mod bvh;
+#[cfg(feature = "embree")]
+pub mod embree;
+pub mod triangle;
+
+use std::fmt;
+use std::str::FromStr;
+use std::sync::Arc;
+
+use crate::geometry::{Hit, Ray};
+use crate::scene::Scene;
+
+/// An acceleration structure over one scene.
+///
+/// `intersect` returns the closest hit with `t` in `[ray.t_min, ray.t_max)`; `occluded` answers whether
+/// any hit exists there (for shadow rays, with early exit). Hits on materials that need an alpha test
+/// count only where `Scene::alpha_passes` says so.
+pub trait Accel: Send + Sync {
+    fn name(&self) -> &'static str;
+    fn intersect(&self, ray: &Ray) -> Option<Hit>;
+    fn occluded(&self, ray: &Ray) -> bool;
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Backend {
+    Embree,
+    Bvh,
+}
+
+impl Backend {
+    /// Embree when this build has it, the Rust BVH otherwise.
+    pub fn default_available() -> Self {
+        if cfg!(feature = "embree") {
+            Backend::Embree
+        } else {
+            Backend::Bvh
+        }
+    }
+
+    pub fn all_available() -> Vec<Backend> {
+        let mut v = vec![Backend::Bvh];
+        if cfg!(feature = "embree") {
+            v.push(Backend::Embree);
+        }
+        v
+    }
+}
+
+impl fmt::Display for Backend {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Backend::Embree => "embree",
+            Backend::Bvh => "bvh",
+        })
+    }
+}
+
+impl FromStr for Backend {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "embree" => Ok(Backend::Embree),
+            "bvh" => Ok(Backend::Bvh),
+            _ => Err(format!("unknown backend '{s}' (expected embree or bvh)")),
+        }
+    }
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum AccelError {
+    #[error("this glint was built without Embree (rebuild with the `embree` feature, or use --backend bvh)")]
+    EmbreeUnavailable,
+    #[error("embree: {0}")]
+    Embree(String),
+}
+
+/// Builds the chosen backend over the scene's instances.
+pub fn build(scene: Arc<Scene>, backend: Backend) -> Result<Box<dyn Accel>, AccelError> {
+    match backend {
+        Backend::Bvh => Ok(Box::new(bvh::Bvh::build(scene))),
+        #[cfg(feature = "embree")]
+        Backend::Embree => Ok(Box::new(embree::EmbreeAccel::build(scene)?)),
+        #[cfg(not(feature = "embree"))]
+        Backend::Embree => Err(AccelError::EmbreeUnavailable),
+    }
+}

@@ -1,0 +1,227 @@
+//! The film: a linear RGBA float image that the integrator fills, and its output as PNG or EXR.
+//! Files are written to a temporary name beside the target and renamed, so no half image is ever left.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use anyhow::{bail, Context, Result};
+use glam::Vec4;
+
+/// A linear-light RGBA image, row-major, first row at the top.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    pub width: usize,
+    pub height: usize,
+    pub pixels: Vec<Vec4>,
+}
+
+impl Image {
+    pub fn new(width: usize, height: usize) -> Self {
+        Self {
+            width,
+            height,
+            pixels: vec![Vec4::ZERO; width * height],
+        }
+    }
+
+    pub fn get(&self, x: usize, y: usize) -> Vec4 {
+        self.pixels[y * self.width + x]
+    }
+
+    /// Mean of the RGB channels over all pixels.
+    pub fn mean_rgb(&self) -> f64 {
+        let s: f64 = self
+            .pixels
+            .iter()
+            .map(|p| (p.x + p.y + p.z) as f64 / 3.0)
+            .sum();
+        s / self.pixels.len().max(1) as f64
+    }
+
+    /// Mean absolute difference of RGB with another image of the same size.
+    pub fn mean_abs_diff(&self, other: &Image) -> f64 {
+        assert_eq!((self.width, self.height), (other.width, other.height));
+        let s: f64 = self
+            .pixels
+            .iter()
+            .zip(&other.pixels)
+            .map(|(a, b)| ((*a - *b).truncate().abs().element_sum() / 3.0) as f64)
+            .sum();
+        s / self.pixels.len().max(1) as f64
+    }
+
+    pub fn has_non_finite(&self) -> bool {
+        self.pixels.iter().any(|p| !p.is_finite())
+    }
+}
+
+pub fn srgb_to_linear(c: f32) -> f32 {
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+pub fn linear_to_srgb(c: f32) -> f32 {
+    if c <= 0.003_130_8 {
+        c * 12.92
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// Maps linear radiance to display: exposure (in stops), a soft shoulder for highlights, then sRGB.
+pub fn tonemap(c: f32, exposure: f32) -> u8 {
+    let x = (c * exposure.exp2()).max(0.0);
+    // Reinhard-style shoulder that keeps values below 0.6 almost linear.
+    let y = if x < 0.6 {
+        x
+    } else {
+        0.6 + 0.4 * (1.0 - (-(x - 0.6) / 0.4).exp())
+    };
+    (linear_to_srgb(y.min(1.0)) * 255.0 + 0.5) as u8
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    Png,
+    Exr,
+}
+
+impl Format {
+    pub fn from_path(path: &Path) -> Result<Self> {
+        match path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(|e| e.to_ascii_lowercase())
+            .as_deref()
+        {
+            Some("png") => Ok(Format::Png),
+            Some("exr") => Ok(Format::Exr),
+            _ => bail!(
+                "{}: unsupported output type (expected .png or .exr)",
+                path.display()
+            ),
+        }
+    }
+}
+
+/// Writes the image (format from the extension) through a temporary file and an atomic rename.
+pub fn write(image: &Image, path: &Path, exposure: f32) -> Result<()> {
+    let format = Format::from_path(path)?;
+    let tmp = temp_path(path);
+    let result = match format {
+        Format::Png => write_png(image, &tmp, exposure),
+        Format::Exr => write_exr(image, &tmp),
+    };
+    if let Err(e) = result {
+        let _ = fs::remove_file(&tmp);
+        return Err(e.context(format!("writing {}", path.display())));
+    }
+    fs::rename(&tmp, path).with_context(|| format!("renaming into {}", path.display()))
+}
+
+fn temp_path(path: &Path) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    // Keep the extension last so format-sniffing encoders see the right type.
+    path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
+}
+
+fn write_png(image: &Image, path: &Path, exposure: f32) -> Result<()> {
+    let mut buf = Vec::with_capacity(image.width * image.height * 4);
+    for p in &image.pixels {
+        buf.extend_from_slice(&[
+            tonemap(p.x, exposure),
+            tonemap(p.y, exposure),
+            tonemap(p.z, exposure),
+            (p.w.clamp(0.0, 1.0) * 255.0 + 0.5) as u8,
+        ]);
+    }
+    image::save_buffer_with_format(
+        path,
+        &buf,
+        image.width as u32,
+        image.height as u32,
+        image::ColorType::Rgba8,
+        image::ImageFormat::Png,
+    )?;
+    Ok(())
+}
+
+fn write_exr(image: &Image, path: &Path) -> Result<()> {
+    use exr::prelude::{SpecificChannels, Vec2, WritableImage};
+    let w = image.width;
+    let channels = SpecificChannels::rgba(|Vec2(x, y)| {
+        let p: Vec4 = image.pixels[y * w + x];
+        (p.x, p.y, p.z, p.w)
+    });
+    exr::prelude::Image::from_channels((image.width, image.height), channels)
+        .write()
+        .to_file(path)
+        .map_err(|e| anyhow::anyhow!("{e}"))
+}
+
+/// Reads an EXR written by `write` back into linear RGBA (for tests and reference images).
+pub fn read_exr(path: &Path) -> Result<Image> {
+    use exr::prelude::{read_first_rgba_layer_from_file, Vec2};
+    let img = read_first_rgba_layer_from_file(
+        path,
+        |res, _| {
+            let (w, h) = (res.width(), res.height());
+            (w, vec![glam::Vec4::ZERO; w * h])
+        },
+        |(w, px), Vec2(x, y), (r, g, b, a): (f32, f32, f32, f32)| {
+            px[y * *w + x] = glam::Vec4::new(r, g, b, a)
+        },
+    )
+    .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    let size = img.layer_data.size;
+    Ok(Image {
+        width: size.width(),
+        height: size.height(),
+        pixels: img.layer_data.channel_data.pixels.1,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn srgb_round_trip() {
+        for i in 0..=255 {
+            let c = i as f32 / 255.0;
+            assert!((linear_to_srgb(srgb_to_linear(c)) - c).abs() < 1e-5);
+        }
+    }
+
+    #[test]
+    fn exr_round_trip_is_exact_and_png_is_written() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut img = Image::new(3, 2);
+        for (i, p) in img.pixels.iter_mut().enumerate() {
+            *p = Vec4::new(i as f32 * 0.5, 1e-3, 100.0, 1.0);
+        }
+        let exr = dir.path().join("a.exr");
+        write(&img, &exr, 0.0).unwrap();
+        assert_eq!(read_exr(&exr).unwrap(), img);
+        let png = dir.path().join("a.png");
+        write(&img, &png, 0.0).unwrap();
+        let back = image::open(&png).unwrap().to_rgba8();
+        assert_eq!(back.dimensions(), (3, 2));
+        // Only the two outputs: no temporary left behind.
+        assert_eq!(fs::read_dir(dir.path()).unwrap().count(), 2);
+    }
+
+    #[test]
+    fn unknown_extension_is_an_error_and_writes_nothing() {
+        let dir = tempfile::tempdir().unwrap();
+        let err = write(&Image::new(1, 1), &dir.path().join("a.bmp"), 0.0).unwrap_err();
+        assert!(err.to_string().contains("a.bmp"));
+        assert_eq!(fs::read_dir(dir.path()).unwrap().count(), 0);
+    }
+}

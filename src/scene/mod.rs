@@ -1,0 +1,371 @@
+//! One in-memory `Scene` that every loader fills: meshes, instances, materials, textures, lights, cameras.
+//! Loaders (`gltf`, `obj`) produce it; accelerators and the integrator only read it.
+
+pub mod defaults;
+pub mod error;
+pub mod gltf;
+pub mod obj;
+pub mod texture;
+
+use std::path::{Path, PathBuf};
+
+use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
+
+use crate::geometry::{Aabb, Ray};
+pub use error::LoadError;
+pub use texture::{Texture, Wrap};
+
+/// A triangle mesh in its own object space, with one material (a glTF primitive, or an OBJ model).
+#[derive(Clone, Debug, Default)]
+pub struct Mesh {
+    pub name: String,
+    pub positions: Vec<Vec3>,
+    /// Per-vertex shading normals; always present (computed from the faces when the file has none).
+    pub normals: Vec<Vec3>,
+    /// Texture coordinates of set 0; empty when the file has none.
+    pub uvs: Vec<Vec2>,
+    /// Per-vertex tangents (xyz, w = bitangent sign); empty when the file has none.
+    pub tangents: Vec<Vec4>,
+    pub indices: Vec<[u32; 3]>,
+    pub material: u32,
+}
+
+impl Mesh {
+    pub fn triangle(&self, prim: u32) -> [Vec3; 3] {
+        let [a, b, c] = self.indices[prim as usize];
+        [
+            self.positions[a as usize],
+            self.positions[b as usize],
+            self.positions[c as usize],
+        ]
+    }
+
+    pub fn bounds(&self) -> Aabb {
+        Aabb::from_points(self.positions.iter().copied())
+    }
+
+    /// Texture coordinates at barycentrics `(u, v)` of a triangle; zero when the mesh has none.
+    pub fn uv_at(&self, prim: u32, u: f32, v: f32) -> Vec2 {
+        if self.uvs.is_empty() {
+            return Vec2::ZERO;
+        }
+        let [a, b, c] = self.indices[prim as usize];
+        self.uvs[a as usize] * (1.0 - u - v) + self.uvs[b as usize] * u + self.uvs[c as usize] * v
+    }
+}
+
+/// One placement of a mesh in the world.
+#[derive(Clone, Debug)]
+pub struct Instance {
+    pub mesh: u32,
+    pub to_world: Mat4,
+    /// Transforms normals to world space (inverse transpose of the linear part).
+    pub normal_to_world: Mat3,
+}
+
+impl Instance {
+    pub fn new(mesh: u32, to_world: Mat4) -> Self {
+        let normal_to_world = Mat3::from_mat4(to_world).inverse().transpose();
+        Self {
+            mesh,
+            to_world,
+            normal_to_world,
+        }
+    }
+
+    pub fn is_identity(&self) -> bool {
+        self.to_world == Mat4::IDENTITY
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum AlphaMode {
+    Opaque,
+    /// Cut out where alpha < cutoff.
+    Mask(f32),
+    /// Partly transparent: a surface of alpha `a` stops a ray with probability `a`.
+    Blend,
+}
+
+/// A texture binding: which texture, and the KHR_texture_transform applied to the UVs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TexRef {
+    pub texture: u32,
+    /// Row-major 2x3 affine UV transform (identity when the file has none).
+    pub uv_transform: [[f32; 3]; 2],
+}
+
+impl TexRef {
+    pub const IDENTITY_UV: [[f32; 3]; 2] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+
+    pub fn new(texture: u32) -> Self {
+        Self {
+            texture,
+            uv_transform: Self::IDENTITY_UV,
+        }
+    }
+
+    pub fn apply(&self, uv: Vec2) -> Vec2 {
+        let m = &self.uv_transform;
+        Vec2::new(
+            m[0][0] * uv.x + m[0][1] * uv.y + m[0][2],
+            m[1][0] * uv.x + m[1][1] * uv.y + m[1][2],
+        )
+    }
+}
+
+/// glTF's metallic-roughness material; OBJ/MTL materials are mapped onto it.
+#[derive(Clone, Debug)]
+pub struct Material {
+    pub name: String,
+    /// Linear RGB and alpha.
+    pub base_color: Vec4,
+    pub base_color_tex: Option<TexRef>,
+    pub metallic: f32,
+    pub roughness: f32,
+    /// Roughness in G, metalness in B (glTF layout).
+    pub metallic_roughness_tex: Option<TexRef>,
+    pub normal_tex: Option<TexRef>,
+    pub normal_scale: f32,
+    /// Linear RGB radiance, emissive strength included.
+    pub emissive: Vec3,
+    pub emissive_tex: Option<TexRef>,
+    pub alpha_mode: AlphaMode,
+    pub double_sided: bool,
+    /// KHR_materials_transmission factor (the distribution issue refracts through it).
+    pub transmission: f32,
+    pub ior: f32,
+}
+
+impl Default for Material {
+    fn default() -> Self {
+        Self {
+            name: "default".into(),
+            base_color: Vec4::ONE,
+            base_color_tex: None,
+            metallic: 1.0,
+            roughness: 1.0,
+            metallic_roughness_tex: None,
+            normal_tex: None,
+            normal_scale: 1.0,
+            emissive: Vec3::ZERO,
+            emissive_tex: None,
+            alpha_mode: AlphaMode::Opaque,
+            double_sided: false,
+            transmission: 0.0,
+            ior: 1.5,
+        }
+    }
+}
+
+impl Material {
+    pub fn is_emissive(&self) -> bool {
+        self.emissive.max_element() > 0.0
+    }
+
+    /// Whether hits on this material need an alpha test (cutouts or blending).
+    pub fn needs_alpha_test(&self) -> bool {
+        match self.alpha_mode {
+            AlphaMode::Opaque => false,
+            AlphaMode::Mask(_) | AlphaMode::Blend => {
+                self.base_color_tex.is_some() || self.base_color.w < 1.0
+            }
+        }
+    }
+}
+
+/// Lights given by the file (KHR_lights_punctual) or added by the default rig. Emissive triangles are
+/// lights too, but they live in the materials; the integrator collects them.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Light {
+    /// Intensity in W/sr (glTF candela), linear RGB.
+    Point { position: Vec3, intensity: Vec3 },
+    Spot {
+        position: Vec3,
+        /// The direction the light points to (unit).
+        direction: Vec3,
+        intensity: Vec3,
+        cos_inner: f32,
+        cos_outer: f32,
+    },
+    /// Irradiance (glTF lux) on a surface facing the light; `direction` is where the light travels to.
+    Directional { direction: Vec3, irradiance: Vec3 },
+    /// Constant radiance from every direction not blocked by the scene.
+    Environment { radiance: Vec3 },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection {
+    /// Vertical field of view in radians; aspect ratio from the file, or from the image when absent.
+    Perspective { yfov: f32, aspect: Option<f32> },
+    /// Half extents of the view.
+    Orthographic { xmag: f32, ymag: f32 },
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Camera {
+    pub name: String,
+    /// Camera to world; the camera looks down its -Z with +Y up (glTF convention).
+    pub to_world: Mat4,
+    pub projection: Projection,
+}
+
+impl Camera {
+    pub fn look_at(eye: Vec3, target: Vec3, up: Vec3, yfov: f32) -> Self {
+        Self {
+            name: "look-at".into(),
+            to_world: Mat4::look_at_rh(eye, target, up).inverse(),
+            projection: Projection::Perspective { yfov, aspect: None },
+        }
+    }
+
+    pub fn position(&self) -> Vec3 {
+        self.to_world.w_axis.truncate()
+    }
+}
+
+/// What the file held, for `glint info` (counts from the file, not after flattening).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SceneStats {
+    pub nodes: usize,
+    pub meshes: usize,
+    pub primitives: usize,
+    /// Triangles over all instances (a mesh used twice counts twice).
+    pub triangles: usize,
+    pub materials: usize,
+    pub textures: usize,
+    pub lights: usize,
+    pub cameras: usize,
+    pub animations: usize,
+}
+
+#[derive(Clone, Debug, Default)]
+pub struct Scene {
+    pub source: PathBuf,
+    pub meshes: Vec<Mesh>,
+    pub instances: Vec<Instance>,
+    pub materials: Vec<Material>,
+    pub textures: Vec<Texture>,
+    pub lights: Vec<Light>,
+    pub cameras: Vec<Camera>,
+    pub stats: SceneStats,
+    /// Non-fatal problems met while loading (skipped primitives, dropped triangles), one line each.
+    pub warnings: Vec<String>,
+}
+
+impl Scene {
+    /// Loads a .gltf, .glb or .obj file, chosen by extension.
+    pub fn load(path: &Path) -> Result<Scene, LoadError> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(|e| e.to_ascii_lowercase())
+            .unwrap_or_default();
+        if !path.exists() {
+            return Err(LoadError::new(path, "no such file"));
+        }
+        let mut scene = match ext.as_str() {
+            "gltf" | "glb" => gltf::load(path)?,
+            "obj" => obj::load(path)?,
+            _ => {
+                return Err(LoadError::new(
+                    path,
+                    format!("unsupported file type '.{ext}' (expected .gltf, .glb or .obj)"),
+                ))
+            }
+        };
+        scene.source = path.to_path_buf();
+        scene.validate()?;
+        Ok(scene)
+    }
+
+    /// Checks the invariants the accelerators rely on; a loader bug or odd file becomes an error here.
+    pub fn validate(&self) -> Result<(), LoadError> {
+        let err = |m: String| Err(LoadError::new(&self.source, m));
+        for (i, m) in self.meshes.iter().enumerate() {
+            let n = m.positions.len() as u32;
+            if m.indices.iter().flatten().any(|&k| k >= n) {
+                return err(format!("mesh {i} ('{}'): vertex index out of range", m.name));
+            }
+            if m.normals.len() != m.positions.len() {
+                return err(format!("mesh {i} ('{}'): normals missing", m.name));
+            }
+            if m.material as usize >= self.materials.len() {
+                return err(format!("mesh {i} ('{}'): material out of range", m.name));
+            }
+        }
+        for (i, inst) in self.instances.iter().enumerate() {
+            if inst.mesh as usize >= self.meshes.len() {
+                return err(format!("instance {i}: mesh out of range"));
+            }
+            if !inst.to_world.is_finite() {
+                return err(format!("instance {i}: transform is not finite"));
+            }
+        }
+        Ok(())
+    }
+
+    pub fn mesh_of(&self, inst: u32) -> &Mesh {
+        &self.meshes[self.instances[inst as usize].mesh as usize]
+    }
+
+    pub fn material_of(&self, inst: u32) -> &Material {
+        &self.materials[self.mesh_of(inst).material as usize]
+    }
+
+    /// World-space bounds of every instance.
+    pub fn bounds(&self) -> Aabb {
+        self.instances.iter().fold(Aabb::EMPTY, |b, inst| {
+            b.union(self.meshes[inst.mesh as usize].bounds().transformed(&inst.to_world))
+        })
+    }
+
+    pub fn triangle_count(&self) -> usize {
+        self.instances
+            .iter()
+            .map(|i| self.meshes[i.mesh as usize].indices.len())
+            .sum()
+    }
+
+    /// Whether a candidate hit counts, for materials with alpha cutouts or blending. Accelerators call
+    /// this for meshes whose material `needs_alpha_test`. Blending is stochastic but deterministic per
+    /// ray and triangle, so every backend makes the same choice.
+    pub fn alpha_passes(&self, inst: u32, prim: u32, u: f32, v: f32, ray: &Ray) -> bool {
+        let mesh = self.mesh_of(inst);
+        let mat = &self.materials[mesh.material as usize];
+        let alpha = self.base_color(mat, mesh.uv_at(prim, u, v)).w;
+        match mat.alpha_mode {
+            AlphaMode::Opaque => true,
+            AlphaMode::Mask(cutoff) => alpha >= cutoff,
+            AlphaMode::Blend => blend_hash(ray, inst, prim) < alpha,
+        }
+    }
+
+    /// Base colour (linear RGB, alpha) of a material at a texture coordinate.
+    pub fn base_color(&self, mat: &Material, uv: Vec2) -> Vec4 {
+        match mat.base_color_tex {
+            Some(t) => mat.base_color * self.textures[t.texture as usize].sample(t.apply(uv)),
+            None => mat.base_color,
+        }
+    }
+}
+
+/// A uniform number in [0, 1) from the ray and the triangle, so that stochastic transparency is the same
+/// in every backend and every run.
+fn blend_hash(ray: &Ray, inst: u32, prim: u32) -> f32 {
+    let mut h: u64 = 0x9E37_79B9_7F4A_7C15;
+    for w in [
+        ray.o.x.to_bits(),
+        ray.o.y.to_bits(),
+        ray.o.z.to_bits(),
+        ray.d.x.to_bits(),
+        ray.d.y.to_bits(),
+        ray.d.z.to_bits(),
+        inst,
+        prim,
+    ] {
+        h = (h ^ w as u64).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        h ^= h >> 31;
+    }
+    (h >> 40) as f32 / (1u64 << 24) as f32
+}

@@ -1,0 +1,130 @@
+//! Textures as 8-bit RGBA images with glTF's wrap modes, sampled bilinearly into linear colour.
+//! sRGB textures (base colour, emission) are decoded through a table; data textures stay linear.
+
+use std::sync::OnceLock;
+
+use glam::{Vec2, Vec4};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Wrap {
+    Repeat,
+    ClampToEdge,
+    MirroredRepeat,
+}
+
+impl Wrap {
+    /// Maps an integer texel coordinate into `0..n`.
+    fn index(self, i: i64, n: usize) -> usize {
+        let n = n as i64;
+        let k = match self {
+            Wrap::Repeat => i.rem_euclid(n),
+            Wrap::ClampToEdge => i.clamp(0, n - 1),
+            Wrap::MirroredRepeat => {
+                let m = i.rem_euclid(2 * n);
+                if m < n {
+                    m
+                } else {
+                    2 * n - 1 - m
+                }
+            }
+        };
+        k as usize
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Texture {
+    pub name: String,
+    pub width: usize,
+    pub height: usize,
+    /// Row-major RGBA8, first row at the top (v = 0), as glTF defines.
+    pub pixels: Vec<[u8; 4]>,
+    /// Whether RGB is sRGB-encoded (alpha is always linear).
+    pub srgb: bool,
+    pub wrap_s: Wrap,
+    pub wrap_t: Wrap,
+}
+
+fn srgb_table() -> &'static [f32; 256] {
+    static TABLE: OnceLock<[f32; 256]> = OnceLock::new();
+    TABLE.get_or_init(|| {
+        let mut t = [0.0; 256];
+        for (i, v) in t.iter_mut().enumerate() {
+            *v = crate::film::srgb_to_linear(i as f32 / 255.0);
+        }
+        t
+    })
+}
+
+impl Texture {
+    fn texel(&self, x: usize, y: usize) -> Vec4 {
+        let p = self.pixels[y * self.width + x];
+        let a = p[3] as f32 / 255.0;
+        if self.srgb {
+            let t = srgb_table();
+            Vec4::new(t[p[0] as usize], t[p[1] as usize], t[p[2] as usize], a)
+        } else {
+            Vec4::new(p[0] as f32, p[1] as f32, p[2] as f32, p[3] as f32) / 255.0
+        }
+    }
+
+    /// Bilinear lookup at `uv` (texel centres at half-integers), honouring the wrap modes.
+    pub fn sample(&self, uv: Vec2) -> Vec4 {
+        if self.width == 0 || self.height == 0 || !uv.is_finite() {
+            return Vec4::ONE;
+        }
+        let x = uv.x * self.width as f32 - 0.5;
+        let y = uv.y * self.height as f32 - 0.5;
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let (x0, y0) = (x0 as i64, y0 as i64);
+        let xs = [
+            self.wrap_s.index(x0, self.width),
+            self.wrap_s.index(x0 + 1, self.width),
+        ];
+        let ys = [
+            self.wrap_t.index(y0, self.height),
+            self.wrap_t.index(y0 + 1, self.height),
+        ];
+        let top = self.texel(xs[0], ys[0]).lerp(self.texel(xs[1], ys[0]), fx);
+        let bottom = self.texel(xs[0], ys[1]).lerp(self.texel(xs[1], ys[1]), fx);
+        top.lerp(bottom, fy)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn checker(wrap: Wrap) -> Texture {
+        Texture {
+            name: "t".into(),
+            width: 2,
+            height: 1,
+            pixels: vec![[0, 0, 0, 255], [255, 255, 255, 255]],
+            srgb: false,
+            wrap_s: wrap,
+            wrap_t: wrap,
+        }
+    }
+
+    #[test]
+    fn texel_centres_are_exact_and_between_is_linear() {
+        let t = checker(Wrap::ClampToEdge);
+        assert_eq!(t.sample(Vec2::new(0.25, 0.5)).x, 0.0);
+        assert_eq!(t.sample(Vec2::new(0.75, 0.5)).x, 1.0);
+        assert!((t.sample(Vec2::new(0.5, 0.5)).x - 0.5).abs() < 1e-6);
+    }
+
+    #[test]
+    fn wrap_modes_differ_past_the_edge() {
+        // At u = 1.0 the lookup falls between the last texel and the one past the edge.
+        let u = Vec2::new(1.0, 0.5);
+        assert!((checker(Wrap::Repeat).sample(u).x - 0.5).abs() < 1e-6);
+        assert_eq!(checker(Wrap::ClampToEdge).sample(u).x, 1.0);
+        assert_eq!(checker(Wrap::MirroredRepeat).sample(u).x, 1.0);
+        assert_eq!(Wrap::MirroredRepeat.index(-1, 4), 0);
+        assert_eq!(Wrap::MirroredRepeat.index(4, 4), 3);
+        assert_eq!(Wrap::Repeat.index(-1, 4), 3);
+    }
+}
