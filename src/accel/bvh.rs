@@ -1,12 +1,540 @@
-//! placeholder
+//! The pure-Rust backend: a binary BVH over world-space triangles, built by binned SAH in parallel.
+//! Traversal is ordered front to back with conservative slab tests (Ize 2013) and the watertight triangle test.
+
 use std::sync::Arc;
+
+use glam::Vec3;
+
+use super::triangle::{self, RayShear};
 use super::Accel;
-use crate::geometry::{Hit, Ray};
+use crate::geometry::{Aabb, Hit, Ray};
 use crate::scene::Scene;
-pub struct Bvh { _s: Arc<Scene> }
-impl Bvh { pub fn build(s: Arc<Scene>) -> Self { Self { _s: s } } }
+
+/// Number of SAH bins per axis.
+const BINS: usize = 16;
+/// Leaves never hold more than this many triangles.
+const MAX_LEAF: usize = 8;
+/// Relative cost of a ray/box test against a ray/triangle test, for the SAH.
+const TRAVERSAL_COST: f32 = 1.0;
+/// Subtrees smaller than this are built on the current thread.
+const PARALLEL_THRESHOLD: usize = 4096;
+/// Marks a triangle id whose material needs an alpha test.
+const ALPHA_BIT: u32 = 1 << 31;
+
+/// A node: bounds and either two children (`count == 0`, left child at `index`, right child at
+/// `index + 1`) or a leaf of `count` triangles starting at `index`. 32 bytes, two per cache line.
+#[derive(Clone, Copy, Debug)]
+#[repr(C)]
+struct Node {
+    min: [f32; 3],
+    index: u32,
+    max: [f32; 3],
+    count: u32,
+}
+
+/// Triangle identity: instance (top bit: alpha-tested) and primitive within its mesh.
+#[derive(Clone, Copy, Debug)]
+struct TriId {
+    inst: u32,
+    prim: u32,
+}
+
+pub struct Bvh {
+    scene: Arc<Scene>,
+    nodes: Vec<Node>,
+    /// World-space vertices, in leaf order.
+    tris: Vec<[Vec3; 3]>,
+    ids: Vec<TriId>,
+}
+
+/// Build-time reference to one triangle.
+#[derive(Clone, Copy)]
+struct PrimRef {
+    bounds: Aabb,
+    centroid: Vec3,
+    index: u32,
+}
+
+/// A subtree built independently (possibly on another thread), with node indices local to it.
+struct Subtree {
+    nodes: Vec<Node>,
+    order: Vec<u32>,
+}
+
+impl Bvh {
+    pub fn build(scene: Arc<Scene>) -> Self {
+        let mut tris = Vec::with_capacity(scene.triangle_count());
+        let mut ids = Vec::with_capacity(tris.capacity());
+        for (i, inst) in scene.instances.iter().enumerate() {
+            let mesh = &scene.meshes[inst.mesh as usize];
+            let alpha = if scene.materials[mesh.material as usize].needs_alpha_test() {
+                ALPHA_BIT
+            } else {
+                0
+            };
+            let world: Vec<Vec3> = mesh
+                .positions
+                .iter()
+                .map(|&p| inst.to_world.transform_point3(p))
+                .collect();
+            for (p, idx) in mesh.indices.iter().enumerate() {
+                tris.push(idx.map(|k| world[k as usize]));
+                ids.push(TriId {
+                    inst: i as u32 | alpha,
+                    prim: p as u32,
+                });
+            }
+        }
+        let refs: Vec<PrimRef> = tris
+            .iter()
+            .enumerate()
+            .map(|(i, t)| {
+                let bounds = Aabb::from_points(*t);
+                PrimRef {
+                    bounds,
+                    centroid: bounds.center(),
+                    index: i as u32,
+                }
+            })
+            .collect();
+        let tree = build_subtree(refs);
+        let tris = tree.order.iter().map(|&i| tris[i as usize]).collect();
+        let ids = tree.order.iter().map(|&i| ids[i as usize]).collect();
+        Self {
+            scene,
+            nodes: tree.nodes,
+            tris,
+            ids,
+        }
+    }
+
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Bytes held by the structure (nodes, triangles, ids).
+    pub fn memory_bytes(&self) -> usize {
+        self.nodes.len() * std::mem::size_of::<Node>()
+            + self.tris.len() * std::mem::size_of::<[Vec3; 3]>()
+            + self.ids.len() * std::mem::size_of::<TriId>()
+    }
+
+    /// Walks the tree front to back, keeping the closest accepted hit; with `any`, returns the first.
+    #[inline(always)]
+    fn traverse(&self, ray: &Ray, any: bool) -> Option<Hit> {
+        if self.tris.is_empty() {
+            return None;
+        }
+        let sh = RayShear::new(ray.d);
+        let inv = ray.d.recip();
+        // Ize 2013: widen the far slab distance by 1 + 2 gamma(3) so that rounding never culls a box
+        // that the ray touches.
+        let far_scale = 1.0 + 2.0 * gamma(3);
+        let neg = [inv.x < 0.0, inv.y < 0.0, inv.z < 0.0];
+        let mut t_max = ray.t_max;
+        let mut best: Option<Hit> = None;
+        let mut stack = [0u32; 64];
+        let mut sp = 0;
+        let mut node_idx = 0u32;
+        let root = &self.nodes[0];
+        if slab(root, ray.o, inv, neg, far_scale, ray.t_min, t_max).is_none() {
+            return None;
+        }
+        loop {
+            let node = &self.nodes[node_idx as usize];
+            if node.count > 0 {
+                let start = node.index as usize;
+                for k in start..start + node.count as usize {
+                    let [a, b, c] = self.tris[k];
+                    if let Some(h) = triangle::intersect(ray.o, &sh, a, b, c, ray.t_min, t_max) {
+                        let id = self.ids[k];
+                        let inst = id.inst & !ALPHA_BIT;
+                        if id.inst & ALPHA_BIT != 0
+                            && !self.scene.alpha_passes(inst, id.prim, h.u, h.v, ray)
+                        {
+                            continue;
+                        }
+                        if any {
+                            return Some(Hit {
+                                t: h.t,
+                                u: h.u,
+                                v: h.v,
+                                inst,
+                                prim: id.prim,
+                            });
+                        }
+                        t_max = h.t;
+                        best = Some(Hit {
+                            t: h.t,
+                            u: h.u,
+                            v: h.v,
+                            inst,
+                            prim: id.prim,
+                        });
+                    }
+                }
+            } else {
+                let l = node.index;
+                let r = l + 1;
+                let tl = slab(
+                    &self.nodes[l as usize],
+                    ray.o,
+                    inv,
+                    neg,
+                    far_scale,
+                    ray.t_min,
+                    t_max,
+                );
+                let tr = slab(
+                    &self.nodes[r as usize],
+                    ray.o,
+                    inv,
+                    neg,
+                    far_scale,
+                    ray.t_min,
+                    t_max,
+                );
+                match (tl, tr) {
+                    (Some(a), Some(b)) => {
+                        let (near, far) = if a <= b { (l, r) } else { (r, l) };
+                        stack[sp] = far;
+                        sp += 1;
+                        node_idx = near;
+                        continue;
+                    }
+                    (Some(_), None) => {
+                        node_idx = l;
+                        continue;
+                    }
+                    (None, Some(_)) => {
+                        node_idx = r;
+                        continue;
+                    }
+                    (None, None) => {}
+                }
+            }
+            if sp == 0 {
+                break;
+            }
+            sp -= 1;
+            node_idx = stack[sp];
+        }
+        best
+    }
+}
+
+/// gamma(n) of pbrt: a bound on the relative error of n floating-point operations.
+const fn gamma(n: i32) -> f32 {
+    let e = f32::EPSILON * 0.5 * n as f32;
+    e / (1.0 - e)
+}
+
+/// Entry distance of the ray into the node's box, or None when it misses within `[t_min, t_max]`.
+#[inline(always)]
+fn slab(
+    node: &Node,
+    o: Vec3,
+    inv: Vec3,
+    neg: [bool; 3],
+    far_scale: f32,
+    t_min: f32,
+    t_max: f32,
+) -> Option<f32> {
+    let mut t0 = t_min;
+    let mut t1 = t_max;
+    for a in 0..3 {
+        let (lo, hi) = if neg[a] {
+            (node.max[a], node.min[a])
+        } else {
+            (node.min[a], node.max[a])
+        };
+        let near = (lo - o[a]) * inv[a];
+        let far = (hi - o[a]) * inv[a] * far_scale;
+        // NaN (0 * inf on a slab face) must not shrink the interval: max/min keep the other operand.
+        t0 = t0.max(near);
+        t1 = t1.min(far);
+    }
+    (t0 <= t1).then_some(t0)
+}
+
+fn build_subtree(refs: Vec<PrimRef>) -> Subtree {
+    let mut nodes = Vec::with_capacity(2 * refs.len() / MAX_LEAF.max(1) + 1);
+    let mut order = Vec::with_capacity(refs.len());
+    nodes.push(Node {
+        min: [0.0; 3],
+        index: 0,
+        max: [0.0; 3],
+        count: 0,
+    });
+    build_into(refs, 0, &mut nodes, &mut order);
+    Subtree { nodes, order }
+}
+
+fn set_bounds(node: &mut Node, b: Aabb) {
+    node.min = b.min.to_array();
+    node.max = b.max.to_array();
+}
+
+/// Fills node `at` (already allocated) from `refs`, appending children and leaf order.
+fn build_into(refs: Vec<PrimRef>, at: usize, nodes: &mut Vec<Node>, order: &mut Vec<u32>) {
+    let bounds = refs.iter().fold(Aabb::EMPTY, |b, r| b.union(r.bounds));
+    set_bounds(&mut nodes[at], bounds);
+    let split = if refs.len() <= 1 {
+        None
+    } else {
+        find_split(&refs, bounds)
+    };
+    let (left, right) = match split {
+        Some(s) => partition(refs, s),
+        // No split beats a leaf, or the centroids coincide: still split large sets so leaves stay small.
+        None if refs.len() > MAX_LEAF => median_split(refs),
+        None => {
+            nodes[at].index = order.len() as u32;
+            nodes[at].count = refs.len() as u32;
+            order.extend(refs.iter().map(|r| r.index));
+            return;
+        }
+    };
+    let l = nodes.len();
+    nodes[at].index = l as u32;
+    nodes[at].count = 0;
+    let blank = nodes[at];
+    nodes.push(blank);
+    nodes.push(blank);
+    if left.len() + right.len() >= PARALLEL_THRESHOLD {
+        let (lt, rt) = rayon::join(|| build_subtree(left), || build_subtree(right));
+        graft(lt, l, nodes, order);
+        graft(rt, l + 1, nodes, order);
+    } else {
+        build_into(left, l, nodes, order);
+        build_into(right, l + 1, nodes, order);
+    }
+}
+
+/// Copies a separately built subtree into `nodes`, its root into slot `at`, renumbering its indices.
+fn graft(sub: Subtree, at: usize, nodes: &mut Vec<Node>, order: &mut Vec<u32>) {
+    let node_base = nodes.len() as u32 - 1; // subtree node k>0 lands at node_base + k
+    let leaf_base = order.len() as u32;
+    let fix = |mut n: Node| {
+        if n.count > 0 {
+            n.index += leaf_base;
+        } else {
+            n.index += node_base;
+        }
+        n
+    };
+    nodes[at] = fix(sub.nodes[0]);
+    nodes.extend(sub.nodes[1..].iter().map(|&n| fix(n)));
+    order.extend(sub.order);
+}
+
+#[derive(Clone, Copy)]
+struct Split {
+    axis: usize,
+    /// Bins `0..bin` go left.
+    bin: usize,
+    lo: f32,
+    scale: f32,
+}
+
+impl Split {
+    fn bin_of(&self, c: Vec3) -> usize {
+        (((c[self.axis] - self.lo) * self.scale) as usize).min(BINS - 1)
+    }
+}
+
+/// The binned-SAH split with the lowest cost, if it beats making a leaf.
+fn find_split(refs: &[PrimRef], bounds: Aabb) -> Option<Split> {
+    let cb = refs.iter().fold(Aabb::EMPTY, |b, r| b.grow(r.centroid));
+    let leaf_cost = refs.len() as f32;
+    let parent_area = bounds.surface_area().max(f32::MIN_POSITIVE);
+    let mut best: Option<(f32, Split)> = None;
+    for axis in 0..3 {
+        let extent = cb.max[axis] - cb.min[axis];
+        if !(extent > 0.0) {
+            continue;
+        }
+        let split0 = Split {
+            axis,
+            bin: 0,
+            lo: cb.min[axis],
+            scale: BINS as f32 / extent,
+        };
+        let mut boxes = [Aabb::EMPTY; BINS];
+        let mut counts = [0usize; BINS];
+        for r in refs {
+            let b = split0.bin_of(r.centroid);
+            boxes[b] = boxes[b].union(r.bounds);
+            counts[b] += 1;
+        }
+        let mut right_area = [0.0f32; BINS];
+        let mut right_count = [0usize; BINS];
+        let (mut acc, mut n) = (Aabb::EMPTY, 0);
+        for b in (1..BINS).rev() {
+            acc = acc.union(boxes[b]);
+            n += counts[b];
+            right_area[b] = acc.surface_area();
+            right_count[b] = n;
+        }
+        let (mut acc, mut n) = (Aabb::EMPTY, 0);
+        for b in 1..BINS {
+            acc = acc.union(boxes[b - 1]);
+            n += counts[b - 1];
+            if n == 0 || right_count[b] == 0 {
+                continue;
+            }
+            let cost = TRAVERSAL_COST
+                + (acc.surface_area() * n as f32 + right_area[b] * right_count[b] as f32)
+                    / parent_area;
+            if best.is_none_or(|(c, _)| cost < c) {
+                best = Some((cost, Split { bin: b, ..split0 }));
+            }
+        }
+    }
+    best.filter(|(c, _)| *c < leaf_cost || refs.len() > MAX_LEAF)
+        .map(|(_, s)| s)
+}
+
+fn partition(refs: Vec<PrimRef>, s: Split) -> (Vec<PrimRef>, Vec<PrimRef>) {
+    refs.into_iter().partition(|r| s.bin_of(r.centroid) < s.bin)
+}
+
+/// Splits at the median centroid of the widest axis (for sets whose centroids coincide on binning).
+fn median_split(mut refs: Vec<PrimRef>) -> (Vec<PrimRef>, Vec<PrimRef>) {
+    let cb = refs.iter().fold(Aabb::EMPTY, |b, r| b.grow(r.centroid));
+    let axis = cb.extent().max_position();
+    let mid = refs.len() / 2;
+    refs.select_nth_unstable_by(mid, |a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
+    let right = refs.split_off(mid);
+    (refs, right)
+}
+
 impl Accel for Bvh {
-    fn name(&self) -> &'static str { "bvh" }
-    fn intersect(&self, _ray: &Ray) -> Option<Hit> { None }
-    fn occluded(&self, _ray: &Ray) -> bool { false }
+    fn name(&self) -> &'static str {
+        "bvh"
+    }
+
+    fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        self.traverse(ray, false)
+    }
+
+    fn occluded(&self, ray: &Ray) -> bool {
+        self.traverse(ray, true).is_some()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Instance, Material, Mesh};
+    use glam::Mat4;
+
+    /// A grid of n x n unit quads in the z = 0 plane.
+    pub(crate) fn grid_mesh(n: u32) -> Mesh {
+        let mut m = Mesh::default();
+        for y in 0..=n {
+            for x in 0..=n {
+                m.positions.push(Vec3::new(x as f32, y as f32, 0.0));
+                m.normals.push(Vec3::Z);
+            }
+        }
+        for y in 0..n {
+            for x in 0..n {
+                let i = y * (n + 1) + x;
+                m.indices.push([i, i + 1, i + n + 2]);
+                m.indices.push([i, i + n + 2, i + n + 1]);
+            }
+        }
+        m
+    }
+
+    fn scene(meshes: Vec<Mesh>, instances: Vec<Instance>) -> Arc<Scene> {
+        Arc::new(Scene {
+            meshes,
+            instances,
+            materials: vec![Material::default()],
+            ..Default::default()
+        })
+    }
+
+    /// Brute force over every triangle, the reference the tree must match exactly.
+    fn brute(s: &Scene, ray: &Ray) -> Option<(f32, u32, u32)> {
+        let sh = RayShear::new(ray.d);
+        let mut best: Option<(f32, u32, u32)> = None;
+        for (i, inst) in s.instances.iter().enumerate() {
+            let m = &s.meshes[inst.mesh as usize];
+            for p in 0..m.indices.len() as u32 {
+                let [a, b, c] = m.triangle(p).map(|v| inst.to_world.transform_point3(v));
+                let t_max = best.map_or(ray.t_max, |b| b.0);
+                if let Some(h) = triangle::intersect(ray.o, &sh, a, b, c, ray.t_min, t_max) {
+                    best = Some((h.t, i as u32, p));
+                }
+            }
+        }
+        best
+    }
+
+    #[test]
+    fn matches_brute_force_on_random_rays() {
+        let s = scene(
+            vec![grid_mesh(40)],
+            vec![
+                Instance::new(0, Mat4::IDENTITY),
+                Instance::new(
+                    0,
+                    Mat4::from_rotation_x(0.7) * Mat4::from_translation(Vec3::new(-5.0, 3.0, 4.0)),
+                ),
+            ],
+        );
+        let bvh = Bvh::build(s.clone());
+        let mut rng = 0x1234_5678u64;
+        let mut next = || {
+            rng ^= rng << 13;
+            rng ^= rng >> 7;
+            rng ^= rng << 17;
+            (rng >> 40) as f32 / (1u64 << 24) as f32
+        };
+        let mut hits = 0;
+        for _ in 0..20_000 {
+            let o = Vec3::new(next() * 50.0 - 5.0, next() * 50.0 - 5.0, 20.0 * next() - 5.0);
+            let d = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize();
+            let ray = Ray::new(o, d);
+            let want = brute(&s, &ray);
+            let got = bvh.intersect(&ray).map(|h| (h.t, h.inst, h.prim));
+            assert_eq!(got, want, "ray {ray:?}");
+            assert_eq!(bvh.occluded(&ray), want.is_some());
+            hits += want.is_some() as u32;
+        }
+        assert!(hits > 2000, "test rays should hit often, hit {hits}");
+    }
+
+    #[test]
+    fn empty_scene_and_segment_limits() {
+        let bvh = Bvh::build(scene(vec![], vec![]));
+        assert!(bvh.intersect(&Ray::new(Vec3::ZERO, Vec3::Z)).is_none());
+        let bvh = Bvh::build(scene(vec![grid_mesh(2)], vec![Instance::new(0, Mat4::IDENTITY)]));
+        let down = Ray::new(Vec3::new(0.5, 0.3, 1.0), -Vec3::Z);
+        assert!((bvh.intersect(&down).unwrap().t - 1.0).abs() < 1e-6);
+        assert!(!bvh.occluded(&Ray::segment(down.o, down.d, 0.99)));
+        assert!(bvh.occluded(&Ray::segment(down.o, down.d, 1.01)));
+        let beyond = Ray {
+            t_min: 1.01,
+            ..down
+        };
+        assert!(bvh.intersect(&beyond).is_none());
+    }
+
+    #[test]
+    fn axis_aligned_rays_inside_flat_boxes() {
+        // Every node box of a planar grid is flat in z; rays parallel to it along x hit nothing,
+        // and rays straight down the z axis through vertices always hit.
+        let bvh = Bvh::build(scene(vec![grid_mesh(16)], vec![Instance::new(0, Mat4::IDENTITY)]));
+        for y in 0..=16 {
+            for x in 0..=16 {
+                let r = Ray::new(Vec3::new(x as f32, y as f32, 3.0), -Vec3::Z);
+                let h = bvh.intersect(&r).expect("a ray through a grid vertex hits");
+                assert!((h.t - 3.0).abs() < 1e-6);
+            }
+        }
+    }
 }

@@ -1,1 +1,284 @@
-//! placeholder
+//! The command line: clap definitions and the `render` and `info` subcommands.
+//! Nothing else in glint knows about flags; errors travel up as `anyhow` chains to `main`.
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Instant;
+
+use anyhow::{bail, Context, Result};
+use clap::{Parser, Subcommand, ValueEnum};
+use glam::Vec3;
+use indicatif::{ProgressBar, ProgressStyle};
+
+use crate::accel::{self, Backend};
+use crate::film;
+use crate::render::{self, RenderSettings};
+use crate::scene::{defaults, Camera, Projection, Scene};
+
+/// Largest accepted image edge, in pixels.
+const MAX_EDGE: usize = 32_768;
+
+#[derive(Parser, Debug)]
+#[command(name = "glint", version, about = "Render glTF 2.0 and OBJ models with Embree 4 or a Rust BVH")]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Render a model to PNG (tonemapped sRGB) or EXR (linear float RGBA).
+    Render(RenderArgs),
+    /// Print what a model file holds: nodes, meshes, triangles, materials, lights, cameras, animations.
+    Info {
+        /// A .gltf, .glb or .obj file.
+        input: PathBuf,
+    },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum DefaultLights {
+    /// Add the rig when the file has no light of its own.
+    Auto,
+    On,
+    Off,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct RenderArgs {
+    /// A .gltf, .glb or .obj file.
+    pub input: PathBuf,
+    /// Output image: .png or .exr.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    #[arg(long, default_value_t = 800)]
+    pub width: usize,
+    #[arg(long, default_value_t = 600)]
+    pub height: usize,
+    /// Samples per pixel.
+    #[arg(long, default_value_t = 16)]
+    pub spp: u32,
+    /// Bounces after the camera ray (1 = direct light only).
+    #[arg(long, default_value_t = 5)]
+    pub max_depth: u32,
+    /// Ray-tracing backend: embree or bvh.
+    #[arg(long, default_value_t = Backend::default_available())]
+    pub backend: Backend,
+    /// Camera of the file to use, by index or name (default: the first; framed when the file has none).
+    #[arg(long)]
+    pub camera: Option<String>,
+    /// Camera position (x,y,z); overrides the file's camera.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub eye: Option<Vec3>,
+    /// Point the camera looks at (x,y,z); defaults to the centre of the model.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub look_at: Option<Vec3>,
+    /// Up direction (x,y,z) for --eye/--look-at.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub up: Option<Vec3>,
+    /// Vertical field of view in degrees.
+    #[arg(long)]
+    pub fov: Option<f32>,
+    /// Exposure in stops, applied when writing PNG.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub exposure: f32,
+    /// The default light rig (environment + key light).
+    #[arg(long, value_enum, default_value_t = DefaultLights::Auto)]
+    pub default_lights: DefaultLights,
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// No progress bar or summary line.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+fn parse_vec3(s: &str) -> Result<Vec3, String> {
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|c| c.trim().parse::<f32>())
+        .collect::<Result<_, _>>()
+        .map_err(|e| format!("'{s}': {e} (expected x,y,z)"))?;
+    match v[..] {
+        [x, y, z] if x.is_finite() && y.is_finite() && z.is_finite() => Ok(Vec3::new(x, y, z)),
+        _ => Err(format!("'{s}': expected three finite numbers x,y,z")),
+    }
+}
+
+pub fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Render(args) => render_command(args),
+        Command::Info { input } => info_command(&input),
+    }
+}
+
+fn load(path: &std::path::Path) -> Result<Scene> {
+    let scene = Scene::load(path)?;
+    for w in &scene.warnings {
+        eprintln!("warning: {}: {w}", path.display());
+    }
+    Ok(scene)
+}
+
+fn info_command(input: &std::path::Path) -> Result<()> {
+    let scene = load(input)?;
+    let s = &scene.stats;
+    println!("{}", input.display());
+    println!("  nodes       {}", s.nodes);
+    println!("  meshes      {} ({} primitives)", s.meshes, s.primitives);
+    println!("  triangles   {}", s.triangles);
+    println!("  materials   {}", s.materials);
+    println!("  textures    {}", s.textures);
+    println!("  lights      {}", s.lights);
+    println!("  cameras     {}", s.cameras);
+    println!("  animations  {}", s.animations);
+    println!("  instances   {}", scene.instances.len());
+    let b = scene.bounds();
+    if !b.is_empty() {
+        println!("  bounds      {:?} .. {:?}", b.min.to_array(), b.max.to_array());
+    }
+    Ok(())
+}
+
+/// The camera to render through: the file's (by `--camera`), or one framing the model, then adjusted
+/// by `--eye`, `--look-at`, `--up` and `--fov`.
+fn choose_camera(scene: &Scene, args: &RenderArgs) -> Result<Camera> {
+    let aspect = args.width as f32 / args.height as f32;
+    let fov = args.fov.map(|f| f.to_radians());
+    if let Some(f) = fov {
+        if !(f > 0.0 && f < std::f32::consts::PI) {
+            bail!("--fov must be between 0 and 180 degrees");
+        }
+    }
+    let file_camera = match &args.camera {
+        Some(sel) => {
+            let found = match sel.parse::<usize>() {
+                Ok(i) => scene.cameras.get(i),
+                Err(_) => scene.cameras.iter().find(|c| &c.name == sel),
+            };
+            let names: Vec<_> = scene.cameras.iter().map(|c| c.name.as_str()).collect();
+            Some(found.cloned().with_context(|| {
+                format!(
+                    "{}: no camera '{sel}' (the file has {}: {names:?})",
+                    scene.source.display(),
+                    scene.cameras.len()
+                )
+            })?)
+        }
+        None => scene.cameras.first().cloned(),
+    };
+    let yfov = fov.unwrap_or(defaults::DEFAULT_FOV_DEG.to_radians());
+    let mut camera = match file_camera {
+        Some(c) if args.eye.is_none() && args.look_at.is_none() => c,
+        _ => {
+            let bounds = scene.bounds();
+            let (center, _) = defaults::bounding_sphere(&bounds);
+            let target = args.look_at.unwrap_or(center);
+            match args.eye {
+                Some(eye) => {
+                    if (eye - target).length() == 0.0 {
+                        bail!("--eye and --look-at are the same point");
+                    }
+                    let mut up = args.up.unwrap_or(Vec3::Y);
+                    if (target - eye).normalize().cross(up.normalize()).length() < 1e-4 {
+                        up = Vec3::Z;
+                    }
+                    Camera::look_at(eye, target, up, yfov)
+                }
+                None => {
+                    let mut c =
+                        defaults::frame_bounds(&bounds, defaults::default_view_direction(), yfov, aspect);
+                    if args.look_at.is_some() {
+                        let eye = c.position() - center + target;
+                        c = Camera::look_at(eye, target, args.up.unwrap_or(Vec3::Y), yfov);
+                    }
+                    c
+                }
+            }
+        }
+    };
+    if let (Some(f), Projection::Perspective { yfov, .. }) = (fov, &mut camera.projection) {
+        *yfov = f;
+    }
+    Ok(camera)
+}
+
+fn render_command(args: RenderArgs) -> Result<()> {
+    if args.width == 0 || args.height == 0 || args.width > MAX_EDGE || args.height > MAX_EDGE {
+        bail!("image size {}x{} is out of range (1..={MAX_EDGE} per edge)", args.width, args.height);
+    }
+    if args.spp == 0 || args.spp > 1 << 20 {
+        bail!("--spp {} is out of range (1..={})", args.spp, 1 << 20);
+    }
+    // Fail on a bad output name before spending time on the render.
+    film::Format::from_path(&args.output)?;
+    if let Some(parent) = args.output.parent().filter(|p| !p.as_os_str().is_empty()) {
+        if !parent.is_dir() {
+            bail!("{}: output folder does not exist", parent.display());
+        }
+    }
+    if let Some(n) = args.threads {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(n.max(1))
+            .build_global()
+            .context("setting up the thread pool")?;
+    }
+
+    let t0 = Instant::now();
+    let mut scene = load(&args.input)?;
+    let load_s = t0.elapsed().as_secs_f64();
+    let camera = choose_camera(&scene, &args)?;
+    let add_rig = match args.default_lights {
+        DefaultLights::On => true,
+        DefaultLights::Off => false,
+        DefaultLights::Auto => !defaults::has_own_lights(&scene),
+    };
+    if add_rig {
+        scene.lights.extend(defaults::light_rig(&camera.to_world));
+    }
+    let scene = Arc::new(scene);
+
+    let t1 = Instant::now();
+    let accel = accel::build(scene.clone(), args.backend)?;
+    let build_s = t1.elapsed().as_secs_f64();
+
+    let progress = if args.quiet || !std::io::stderr().is_terminal() {
+        ProgressBar::hidden()
+    } else {
+        let bar = ProgressBar::new(0);
+        bar.set_style(
+            ProgressStyle::with_template("{spinner} rendering [{bar:40}] {percent}% tiles, eta {eta}")
+                .expect("valid template")
+                .progress_chars("=> "),
+        );
+        bar
+    };
+    let settings = RenderSettings {
+        width: args.width,
+        height: args.height,
+        spp: args.spp,
+        max_depth: args.max_depth,
+        seed: args.seed,
+    };
+    let (image, stats) = render::render(&scene, accel.as_ref(), &camera, &settings, &progress);
+    film::write(&image, &args.output, args.exposure)?;
+    if !args.quiet {
+        eprintln!(
+            "{}: {}x{} at {} spp with {} in {:.2} s: {} rays, {:.2} Mrays/s (load {:.2} s, build {:.3} s)",
+            args.output.display(),
+            args.width,
+            args.height,
+            args.spp,
+            accel.name(),
+            stats.seconds,
+            stats.rays,
+            stats.mrays_per_second(),
+            load_s,
+            build_s
+        );
+    }
+    Ok(())
+}

@@ -309,6 +309,10 @@ impl Scene {
         &self.meshes[self.instances[inst as usize].mesh as usize]
     }
 
+    pub fn material_of_mesh(&self, mesh: u32) -> &Material {
+        &self.materials[self.meshes[mesh as usize].material as usize]
+    }
+
     pub fn material_of(&self, inst: u32) -> &Material {
         &self.materials[self.mesh_of(inst).material as usize]
     }

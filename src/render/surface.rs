@@ -1,0 +1,128 @@
+//! What the integrator knows about a hit point: position, normals, texture coordinates and the material
+//! evaluated there (textures, normal map), all in world space. Built from a `Hit` and the `Scene`.
+
+use glam::{Vec2, Vec3, Vec4Swizzles};
+
+use super::bsdf::{Bsdf, Frame};
+use crate::geometry::{Hit, Ray};
+use crate::scene::{Material, Scene, TexRef};
+
+#[derive(Clone, Copy, Debug)]
+pub struct SurfaceInteraction {
+    pub p: Vec3,
+    /// Geometric normal, turned to face the incoming ray.
+    pub ng: Vec3,
+    pub uv: Vec2,
+    pub bsdf: Bsdf,
+    /// Emitted radiance towards the incoming ray.
+    pub emission: Vec3,
+    pub inst: u32,
+    pub prim: u32,
+}
+
+fn tex(scene: &Scene, t: Option<TexRef>, uv: Vec2) -> Option<glam::Vec4> {
+    t.map(|t| scene.textures[t.texture as usize].sample(t.apply(uv)))
+}
+
+/// Emitted radiance of a material at a texture coordinate.
+pub fn emission(scene: &Scene, mat: &Material, uv: Vec2) -> Vec3 {
+    match tex(scene, mat.emissive_tex, uv) {
+        Some(t) => mat.emissive * t.xyz(),
+        None => mat.emissive,
+    }
+}
+
+impl SurfaceInteraction {
+    pub fn new(scene: &Scene, hit: &Hit, ray: &Ray) -> Self {
+        let inst = &scene.instances[hit.inst as usize];
+        let mesh = &scene.meshes[inst.mesh as usize];
+        let mat = &scene.materials[mesh.material as usize];
+        let [i0, i1, i2] = mesh.indices[hit.prim as usize].map(|i| i as usize);
+        let (u, v, w) = (hit.u, hit.v, 1.0 - hit.u - hit.v);
+        let [p0, p1, p2] = [i0, i1, i2].map(|i| inst.to_world.transform_point3(mesh.positions[i]));
+        // Interpolated from the vertices rather than o + t d: the error stays within the triangle's
+        // own rounding, which the ray-offset bounds expect.
+        let p = p0 * w + p1 * u + p2 * v;
+        let mut ng = (p1 - p0).cross(p2 - p0).normalize_or_zero();
+        if ng == Vec3::ZERO {
+            ng = -ray.d;
+        }
+        let interp_n = (inst.normal_to_world
+            * (mesh.normals[i0] * w + mesh.normals[i1] * u + mesh.normals[i2] * v))
+            .normalize_or_zero();
+        let mut n = if interp_n == Vec3::ZERO { ng } else { interp_n };
+        // Two-sided shading: both normals face where the ray came from.
+        if ng.dot(ray.d) > 0.0 {
+            ng = -ng;
+        }
+        if n.dot(ng) < 0.0 {
+            n = -n;
+        }
+        let uv = mesh.uv_at(hit.prim, u, v);
+
+        if let Some(nm) = tex(scene, mat.normal_tex, uv) {
+            if let Some((t, b)) = tangent_frame(scene, hit, n) {
+                let m = nm.xyz() * 2.0 - Vec3::ONE;
+                let m = Vec3::new(m.x * mat.normal_scale, m.y * mat.normal_scale, m.z);
+                let mapped = (t * m.x + b * m.y + n * m.z).normalize_or_zero();
+                if mapped.dot(ng) > 0.0 {
+                    n = mapped;
+                }
+            }
+        }
+
+        let base = scene.base_color(mat, uv);
+        let (mut metallic, mut roughness) = (mat.metallic, mat.roughness);
+        if let Some(mr) = tex(scene, mat.metallic_roughness_tex, uv) {
+            roughness *= mr.y;
+            metallic *= mr.z;
+        }
+        Self {
+            p,
+            ng,
+            uv,
+            bsdf: Bsdf::new(Frame::from_normal(n), base.xyz(), metallic, roughness),
+            emission: emission(scene, mat, uv),
+            inst: hit.inst,
+            prim: hit.prim,
+        }
+    }
+}
+
+/// Tangent and bitangent for normal mapping, orthogonalised against `n`: from the mesh's tangents when
+/// it has them, otherwise from the triangle's UV parameterisation.
+fn tangent_frame(scene: &Scene, hit: &Hit, n: Vec3) -> Option<(Vec3, Vec3)> {
+    let inst = &scene.instances[hit.inst as usize];
+    let mesh = &scene.meshes[inst.mesh as usize];
+    let [i0, i1, i2] = mesh.indices[hit.prim as usize].map(|i| i as usize);
+    let (u, v, w) = (hit.u, hit.v, 1.0 - hit.u - hit.v);
+    let (t, sign) = if !mesh.tangents.is_empty() {
+        let t4 = mesh.tangents[i0] * w + mesh.tangents[i1] * u + mesh.tangents[i2] * v;
+        let t = inst.to_world.transform_vector3(t4.xyz());
+        (t, if mesh.tangents[i0].w < 0.0 { -1.0 } else { 1.0 })
+    } else {
+        if mesh.uvs.is_empty() {
+            return None;
+        }
+        let [p0, p1, p2] =
+            [i0, i1, i2].map(|i| inst.to_world.transform_point3(mesh.positions[i]));
+        let [t0, t1, t2] = [i0, i1, i2].map(|i| mesh.uvs[i]);
+        let (e1, e2) = (p1 - p0, p2 - p0);
+        let (d1, d2) = (t1 - t0, t2 - t0);
+        let det = d1.x * d2.y - d1.y * d2.x;
+        if det.abs() < 1e-20 {
+            return None;
+        }
+        let t = (e1 * d2.y - e2 * d1.y) / det;
+        let b = (e2 * d1.x - e1 * d2.x) / det;
+        // glTF's v runs down the image while a normal map's green points up, so an unmirrored
+        // parameterisation has dp/dv opposite to n x t; mirrored UVs flip that.
+        let sign = if n.cross(t).dot(b) > 0.0 { -1.0 } else { 1.0 };
+        (t, sign)
+    };
+    let t = (t - n * n.dot(t)).normalize_or_zero();
+    if t == Vec3::ZERO {
+        return None;
+    }
+    Some((t, n.cross(t) * sign))
+}
