@@ -2,6 +2,7 @@
 //! `bvh` is pure Rust; `embree` wraps Intel Embree 4. Both return the same hits for the same rays.
 
 pub mod bvh;
+pub mod compare;
 #[cfg(feature = "embree")]
 pub mod embree;
 pub mod triangle;

@@ -46,6 +46,8 @@ pub struct Bsdf {
     pub metallic: f32,
     /// GGX alpha = perceptual roughness squared.
     pub alpha: f32,
+    /// Weight of the dielectric specular layer (KHR_materials_specular).
+    pub specular: f32,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -57,26 +59,38 @@ pub struct BsdfSample {
 }
 
 impl Bsdf {
-    pub fn new(frame: Frame, base: Vec3, metallic: f32, roughness: f32) -> Self {
+    pub fn new(frame: Frame, base: Vec3, metallic: f32, roughness: f32, specular: f32) -> Self {
+        let r = roughness.clamp(0.0, 1.0);
         Self {
             frame,
             base,
             metallic: metallic.clamp(0.0, 1.0),
-            alpha: (roughness.clamp(0.0, 1.0) * roughness.clamp(0.0, 1.0)).max(MIN_ALPHA),
+            alpha: (r * r).max(MIN_ALPHA),
+            specular: specular.clamp(0.0, 1.0),
         }
     }
 
-    fn f0(&self) -> Vec3 {
-        Vec3::splat(0.04).lerp(self.base, self.metallic)
+    /// Fresnel of the dielectric layer (F0 = 0.04, scaled by the specular weight).
+    fn fresnel_dielectric(&self, cos: f32) -> f32 {
+        self.specular * (0.04 + 0.96 * (1.0 - cos).clamp(0.0, 1.0).powi(5))
+    }
+
+    /// Fresnel of the whole specular lobe: the dielectric and metal layers mixed by metalness.
+    fn fresnel(&self, cos: f32) -> Vec3 {
+        let metal = schlick(self.base, cos);
+        Vec3::splat(self.fresnel_dielectric(cos)).lerp(metal, self.metallic)
     }
 
     /// Probability of choosing the specular lobe, from the lobes' rough weights at `wo`.
     fn specular_probability(&self, cos_o: f32) -> f32 {
-        let f = schlick(self.f0(), cos_o);
-        let spec = luminance(f);
-        let diff = (1.0 - self.metallic) * luminance(self.base) * (1.0 - luminance(f));
+        let spec = luminance(self.fresnel(cos_o));
+        let diff = (1.0 - self.metallic)
+            * luminance(self.base)
+            * (1.0 - self.fresnel_dielectric(cos_o));
         if diff <= 0.0 {
             1.0
+        } else if spec <= 0.0 {
+            0.0
         } else {
             (spec / (spec + diff)).clamp(0.05, 0.95)
         }
@@ -91,11 +105,10 @@ impl Bsdf {
         let h = (o + i).normalize();
         let oh = o.dot(h).max(0.0);
         let d = ggx_d(h.z, self.alpha);
-        let f = schlick(self.f0(), oh);
         let g2 = 1.0 / (1.0 + lambda(o, self.alpha) + lambda(i, self.alpha));
-        let spec = f * (d * g2 / (4.0 * o.z * i.z));
-        let f_dielectric = 0.04 + 0.96 * (1.0 - oh).powi(5);
-        let diffuse = self.base * ((1.0 - self.metallic) * (1.0 - f_dielectric) * FRAC_1_PI);
+        let spec = self.fresnel(oh) * (d * g2 / (4.0 * o.z * i.z));
+        let diffuse = self.base
+            * ((1.0 - self.metallic) * (1.0 - self.fresnel_dielectric(oh)) * FRAC_1_PI);
         let ps = self.specular_probability(o.z);
         let pdf_spec = g1(o, self.alpha) * d / (4.0 * o.z);
         let pdf = ps * pdf_spec + (1.0 - ps) * i.z * FRAC_1_PI;
@@ -188,10 +201,16 @@ mod tests {
     #[test]
     fn sampled_albedo_matches_uniform_integration() {
         let frame = Frame::from_normal(Vec3::new(0.2, 0.3, 0.9).normalize());
-        for (metallic, roughness) in [(0.0, 0.5), (1.0, 0.3), (0.5, 0.8), (0.0, 1.0)] {
-            let bsdf = Bsdf::new(frame, Vec3::new(0.8, 0.5, 0.3), metallic, roughness);
+        for (metallic, roughness, specular) in [
+            (0.0, 0.5, 1.0),
+            (1.0, 0.3, 1.0),
+            (0.5, 0.8, 1.0),
+            (0.0, 1.0, 1.0),
+            (0.0, 0.4, 0.0),
+        ] {
+            let bsdf = Bsdf::new(frame, Vec3::new(0.8, 0.5, 0.3), metallic, roughness, specular);
             let wo = frame.to_world(Vec3::new(0.5, 0.1, 0.6).normalize());
-            let n = 400_000;
+            let n = 2_000_000;
             let (mut is, mut uni) = (0.0f64, 0.0f64);
             for k in 0..n {
                 let u = Vec2::new(hash(3 * k + 1), hash(3 * k + 2));

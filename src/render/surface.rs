@@ -81,7 +81,7 @@ impl SurfaceInteraction {
             p,
             ng,
             uv,
-            bsdf: Bsdf::new(Frame::from_normal(n), base.xyz(), metallic, roughness),
+            bsdf: Bsdf::new(Frame::from_normal(n), base.xyz(), metallic, roughness, mat.specular),
             emission: emission(scene, mat, uv),
             inst: hit.inst,
             prim: hit.prim,

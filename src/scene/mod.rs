@@ -132,6 +132,8 @@ pub struct Material {
     pub emissive_tex: Option<TexRef>,
     pub alpha_mode: AlphaMode,
     pub double_sided: bool,
+    /// Strength of the dielectric specular layer (KHR_materials_specular's factor; 0 = pure Lambert).
+    pub specular: f32,
     /// KHR_materials_transmission factor (the distribution issue refracts through it).
     pub transmission: f32,
     pub ior: f32,
@@ -152,6 +154,7 @@ impl Default for Material {
             emissive_tex: None,
             alpha_mode: AlphaMode::Opaque,
             double_sided: false,
+            specular: 1.0,
             transmission: 0.0,
             ior: 1.5,
         }

@@ -1,0 +1,86 @@
+//! Helpers shared by the integration tests: where the assets are, and small renders.
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use glint::accel::{self, Backend};
+use glint::film::Image;
+use glint::render::{self, RenderSettings};
+use glint::scene::{defaults, Camera, Scene};
+
+/// The shared asset folder (`../shared/assets` beside the checkout), when present.
+pub fn shared_assets() -> Option<PathBuf> {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/assets");
+    if p.is_dir() {
+        Some(p)
+    } else {
+        eprintln!("shared assets not found at {}: skipping those", p.display());
+        None
+    }
+}
+
+/// Every model file under a folder (.gltf, .glb, .obj), sorted.
+pub fn model_files(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if matches!(
+                p.extension().and_then(|e| e.to_str()),
+                Some("gltf" | "glb" | "obj")
+            ) {
+                out.push(p);
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+/// The project's own assets plus the shared ones (when present).
+pub fn all_model_files() -> Vec<PathBuf> {
+    let mut files = model_files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("assets"));
+    if let Some(shared) = shared_assets() {
+        files.extend(model_files(&shared));
+    }
+    files
+}
+
+/// Loads a model as `glint render` does: the file's first camera or a framing one, and the default
+/// light rig when it has no lights of its own.
+pub fn load_for_render(path: &Path, width: usize, height: usize) -> (Arc<Scene>, Camera) {
+    let mut scene = Scene::load(path).unwrap_or_else(|e| panic!("{e}"));
+    let camera = scene.cameras.first().cloned().unwrap_or_else(|| {
+        defaults::frame_bounds(
+            &scene.bounds(),
+            defaults::default_view_direction(),
+            defaults::DEFAULT_FOV_DEG.to_radians(),
+            width as f32 / height as f32,
+        )
+    });
+    if !defaults::has_own_lights(&scene) {
+        scene.lights.extend(defaults::light_rig(&camera.to_world));
+    }
+    (Arc::new(scene), camera)
+}
+
+pub fn render_with(
+    scene: &Arc<Scene>,
+    camera: &Camera,
+    backend: Backend,
+    settings: &RenderSettings,
+) -> Image {
+    let accel = accel::build(scene.clone(), backend).unwrap();
+    render::render(
+        scene,
+        accel.as_ref(),
+        camera,
+        settings,
+        &indicatif::ProgressBar::hidden(),
+    )
+    .0
+}
