@@ -34,7 +34,10 @@ fn main() {
         );
     }
     // Re-run (and re-fetch) if somebody deletes the cached library.
-    println!("cargo:rerun-if-changed={}", dir.join("libembree4.so").display());
+    println!(
+        "cargo:rerun-if-changed={}",
+        dir.join("libembree4.so").display()
+    );
     println!("cargo:rustc-link-search=native={}", dir.display());
     // Reaches the bins, tests, examples and benches of this package: keep glint one package.
     println!("cargo:rustc-link-arg=-Wl,-rpath,{}", dir.display());

@@ -24,7 +24,11 @@ fn every_asset_renders_finite_and_identically_in_both_backends() {
             .map(|b| (b, common::render_with(&scene, &camera, b, &settings)))
             .collect();
         for (b, img) in &images {
-            assert!(!img.has_non_finite(), "{}: {b} left a NaN/Inf pixel", path.display());
+            assert!(
+                !img.has_non_finite(),
+                "{}: {b} left a NaN/Inf pixel",
+                path.display()
+            );
         }
         if let [(_, a), (_, b)] = &images[..] {
             let mean = a.mean_rgb().max(1e-6);
@@ -65,7 +69,11 @@ fn a_million_random_rays_per_model_hit_the_same_primitive() {
         for (ray, a, b) in &g.mismatches {
             eprintln!("  {ray:?}\n    bvh    {a:?}\n    embree {b:?}");
         }
-        assert!(g.hits > RAYS / 4, "{}: too few hits to mean anything", path.display());
+        assert!(
+            g.hits > RAYS / 4,
+            "{}: too few hits to mean anything",
+            path.display()
+        );
         assert_eq!(g.mismatch_count, 0, "{}", path.display());
         assert_eq!(g.occlusion_mismatches, 0, "{}", path.display());
     }

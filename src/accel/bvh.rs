@@ -496,7 +496,11 @@ mod tests {
         };
         let mut hits = 0;
         for _ in 0..20_000 {
-            let o = Vec3::new(next() * 50.0 - 5.0, next() * 50.0 - 5.0, 20.0 * next() - 5.0);
+            let o = Vec3::new(
+                next() * 50.0 - 5.0,
+                next() * 50.0 - 5.0,
+                20.0 * next() - 5.0,
+            );
             let d = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize();
             let ray = Ray::new(o, d);
             let want = brute(&s, &ray);
@@ -512,7 +516,10 @@ mod tests {
     fn empty_scene_and_segment_limits() {
         let bvh = Bvh::build(scene(vec![], vec![]));
         assert!(bvh.intersect(&Ray::new(Vec3::ZERO, Vec3::Z)).is_none());
-        let bvh = Bvh::build(scene(vec![grid_mesh(2)], vec![Instance::new(0, Mat4::IDENTITY)]));
+        let bvh = Bvh::build(scene(
+            vec![grid_mesh(2)],
+            vec![Instance::new(0, Mat4::IDENTITY)],
+        ));
         let down = Ray::new(Vec3::new(0.5, 0.3, 1.0), -Vec3::Z);
         assert!((bvh.intersect(&down).unwrap().t - 1.0).abs() < 1e-6);
         assert!(!bvh.occluded(&Ray::segment(down.o, down.d, 0.99)));
@@ -528,7 +535,10 @@ mod tests {
     fn axis_aligned_rays_inside_flat_boxes() {
         // Every node box of a planar grid is flat in z; rays parallel to it along x hit nothing,
         // and rays straight down the z axis through vertices always hit.
-        let bvh = Bvh::build(scene(vec![grid_mesh(16)], vec![Instance::new(0, Mat4::IDENTITY)]));
+        let bvh = Bvh::build(scene(
+            vec![grid_mesh(16)],
+            vec![Instance::new(0, Mat4::IDENTITY)],
+        ));
         for y in 0..=16 {
             for x in 0..=16 {
                 let r = Ray::new(Vec3::new(x as f32, y as f32, 3.0), -Vec3::Z);

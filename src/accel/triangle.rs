@@ -103,7 +103,15 @@ mod tests {
     use super::*;
 
     fn hit(o: Vec3, d: Vec3, tri: [Vec3; 3]) -> Option<TriHit> {
-        intersect(o, &RayShear::new(d), tri[0], tri[1], tri[2], 0.0, f32::INFINITY)
+        intersect(
+            o,
+            &RayShear::new(d),
+            tri[0],
+            tri[1],
+            tri[2],
+            0.0,
+            f32::INFINITY,
+        )
     }
 
     #[test]
@@ -121,8 +129,16 @@ mod tests {
     #[test]
     fn shared_edge_is_never_missed() {
         // Two triangles sharing the diagonal of a unit square; rays exactly on the diagonal.
-        let t1 = [Vec3::ZERO, Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 0.0)];
-        let t2 = [Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0), Vec3::new(0.0, 1.0, 0.0)];
+        let t1 = [
+            Vec3::ZERO,
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(1.0, 1.0, 0.0),
+        ];
+        let t2 = [
+            Vec3::ZERO,
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+        ];
         for i in 1..1000 {
             let s = i as f32 / 1000.0;
             let d = Vec3::new(0.013 * s, -0.007, -1.0);

@@ -20,7 +20,11 @@ use crate::scene::{defaults, Camera, Projection, Scene};
 const MAX_EDGE: usize = 32_768;
 
 #[derive(Parser, Debug)]
-#[command(name = "glint", version, about = "Render glTF 2.0 and OBJ models with Embree 4 or a Rust BVH")]
+#[command(
+    name = "glint",
+    version,
+    about = "Render glTF 2.0 and OBJ models with Embree 4 or a Rust BVH"
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
@@ -138,7 +142,11 @@ fn info_command(input: &std::path::Path) -> Result<()> {
     println!("  instances   {}", scene.instances.len());
     let b = scene.bounds();
     if !b.is_empty() {
-        println!("  bounds      {:?} .. {:?}", b.min.to_array(), b.max.to_array());
+        println!(
+            "  bounds      {:?} .. {:?}",
+            b.min.to_array(),
+            b.max.to_array()
+        );
     }
     Ok(())
 }
@@ -189,8 +197,12 @@ fn choose_camera(scene: &Scene, args: &RenderArgs) -> Result<Camera> {
                     Camera::look_at(eye, target, up, yfov)
                 }
                 None => {
-                    let mut c =
-                        defaults::frame_bounds(&bounds, defaults::default_view_direction(), yfov, aspect);
+                    let mut c = defaults::frame_bounds(
+                        &bounds,
+                        defaults::default_view_direction(),
+                        yfov,
+                        aspect,
+                    );
                     if args.look_at.is_some() {
                         let eye = c.position() - center + target;
                         c = Camera::look_at(eye, target, args.up.unwrap_or(Vec3::Y), yfov);
@@ -208,7 +220,11 @@ fn choose_camera(scene: &Scene, args: &RenderArgs) -> Result<Camera> {
 
 fn render_command(args: RenderArgs) -> Result<()> {
     if args.width == 0 || args.height == 0 || args.width > MAX_EDGE || args.height > MAX_EDGE {
-        bail!("image size {}x{} is out of range (1..={MAX_EDGE} per edge)", args.width, args.height);
+        bail!(
+            "image size {}x{} is out of range (1..={MAX_EDGE} per edge)",
+            args.width,
+            args.height
+        );
     }
     if args.spp == 0 || args.spp > 1 << 20 {
         bail!("--spp {} is out of range (1..={})", args.spp, 1 << 20);
@@ -250,9 +266,11 @@ fn render_command(args: RenderArgs) -> Result<()> {
     } else {
         let bar = ProgressBar::new(0);
         bar.set_style(
-            ProgressStyle::with_template("{spinner} rendering [{bar:40}] {percent}% tiles, eta {eta}")
-                .expect("valid template")
-                .progress_chars("=> "),
+            ProgressStyle::with_template(
+                "{spinner} rendering [{bar:40}] {percent}% tiles, eta {eta}",
+            )
+            .expect("valid template")
+            .progress_chars("=> "),
         );
         bar
     };

@@ -84,9 +84,8 @@ impl Bsdf {
     /// Probability of choosing the specular lobe, from the lobes' rough weights at `wo`.
     fn specular_probability(&self, cos_o: f32) -> f32 {
         let spec = luminance(self.fresnel(cos_o));
-        let diff = (1.0 - self.metallic)
-            * luminance(self.base)
-            * (1.0 - self.fresnel_dielectric(cos_o));
+        let diff =
+            (1.0 - self.metallic) * luminance(self.base) * (1.0 - self.fresnel_dielectric(cos_o));
         if diff <= 0.0 {
             1.0
         } else if spec <= 0.0 {
@@ -107,8 +106,8 @@ impl Bsdf {
         let d = ggx_d(h.z, self.alpha);
         let g2 = 1.0 / (1.0 + lambda(o, self.alpha) + lambda(i, self.alpha));
         let spec = self.fresnel(oh) * (d * g2 / (4.0 * o.z * i.z));
-        let diffuse = self.base
-            * ((1.0 - self.metallic) * (1.0 - self.fresnel_dielectric(oh)) * FRAC_1_PI);
+        let diffuse =
+            self.base * ((1.0 - self.metallic) * (1.0 - self.fresnel_dielectric(oh)) * FRAC_1_PI);
         let ps = self.specular_probability(o.z);
         let pdf_spec = g1(o, self.alpha) * d / (4.0 * o.z);
         let pdf = ps * pdf_spec + (1.0 - ps) * i.z * FRAC_1_PI;
@@ -208,7 +207,13 @@ mod tests {
             (0.0, 1.0, 1.0),
             (0.0, 0.4, 0.0),
         ] {
-            let bsdf = Bsdf::new(frame, Vec3::new(0.8, 0.5, 0.3), metallic, roughness, specular);
+            let bsdf = Bsdf::new(
+                frame,
+                Vec3::new(0.8, 0.5, 0.3),
+                metallic,
+                roughness,
+                specular,
+            );
             let wo = frame.to_world(Vec3::new(0.5, 0.1, 0.6).normalize());
             let n = 2_000_000;
             let (mut is, mut uni) = (0.0f64, 0.0f64);

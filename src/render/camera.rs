@@ -18,8 +18,12 @@ pub struct RayCamera {
 #[derive(Clone, Copy, Debug)]
 enum Kind {
     /// Half extents of the image plane at distance 1.
-    Pinhole { half: Vec2 },
-    Orthographic { half: Vec2 },
+    Pinhole {
+        half: Vec2,
+    },
+    Orthographic {
+        half: Vec2,
+    },
 }
 
 impl RayCamera {
@@ -55,7 +59,9 @@ impl RayCamera {
         );
         let (o, d) = match self.kind {
             Kind::Pinhole { half } => (Vec3::ZERO, Vec3::new(ndc.x * half.x, ndc.y * half.y, -1.0)),
-            Kind::Orthographic { half } => (Vec3::new(ndc.x * half.x, ndc.y * half.y, 0.0), -Vec3::Z),
+            Kind::Orthographic { half } => {
+                (Vec3::new(ndc.x * half.x, ndc.y * half.y, 0.0), -Vec3::Z)
+            }
         };
         Ray::new(
             self.to_world.transform_point3(o),

@@ -73,9 +73,9 @@ impl<'a> Integrator<'a> {
                 let w = match prev {
                     None => 1.0,
                     Some((pdf_bsdf, from)) => {
-                        let pdf_light =
-                            self.lights
-                                .pdf_triangle(si.inst, si.prim, from, si.p, si.ng);
+                        let pdf_light = self
+                            .lights
+                            .pdf_triangle(si.inst, si.prim, from, si.p, si.ng);
                         power_heuristic(pdf_bsdf, pdf_light)
                     }
                 };

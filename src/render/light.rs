@@ -58,7 +58,9 @@ impl LightSet {
                     cos_outer,
                     ..
                 } => 2.0 * PI * (1.0 - cos_outer) * luminance(*intensity),
-                Light::Directional { irradiance, .. } => PI * radius * radius * luminance(*irradiance),
+                Light::Directional { irradiance, .. } => {
+                    PI * radius * radius * luminance(*irradiance)
+                }
                 Light::Environment { radiance } => {
                     environment += *radiance;
                     continue;

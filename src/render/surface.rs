@@ -81,7 +81,13 @@ impl SurfaceInteraction {
             p,
             ng,
             uv,
-            bsdf: Bsdf::new(Frame::from_normal(n), base.xyz(), metallic, roughness, mat.specular),
+            bsdf: Bsdf::new(
+                Frame::from_normal(n),
+                base.xyz(),
+                metallic,
+                roughness,
+                mat.specular,
+            ),
             emission: emission(scene, mat, uv),
             inst: hit.inst,
             prim: hit.prim,
@@ -104,8 +110,7 @@ fn tangent_frame(scene: &Scene, hit: &Hit, n: Vec3) -> Option<(Vec3, Vec3)> {
         if mesh.uvs.is_empty() {
             return None;
         }
-        let [p0, p1, p2] =
-            [i0, i1, i2].map(|i| inst.to_world.transform_point3(mesh.positions[i]));
+        let [p0, p1, p2] = [i0, i1, i2].map(|i| inst.to_world.transform_point3(mesh.positions[i]));
         let [t0, t1, t2] = [i0, i1, i2].map(|i| mesh.uvs[i]);
         let (e1, e2) = (p1 - p0, p2 - p0);
         let (d1, d2) = (t1 - t0, t2 - t0);

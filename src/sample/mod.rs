@@ -82,7 +82,9 @@ impl Sampler for RandomSampler {
     fn start(&mut self, x: u32, y: u32, index: u32) {
         self.key = mix64(
             self.seed
-                ^ mix64(((x as u64) << 32 | y as u64) ^ mix64(index as u64 ^ 0xD1B5_4A32_D192_ED03)),
+                ^ mix64(
+                    ((x as u64) << 32 | y as u64) ^ mix64(index as u64 ^ 0xD1B5_4A32_D192_ED03),
+                ),
         );
     }
 

@@ -288,7 +288,10 @@ impl Scene {
         for (i, m) in self.meshes.iter().enumerate() {
             let n = m.positions.len() as u32;
             if m.indices.iter().flatten().any(|&k| k >= n) {
-                return err(format!("mesh {i} ('{}'): vertex index out of range", m.name));
+                return err(format!(
+                    "mesh {i} ('{}'): vertex index out of range",
+                    m.name
+                ));
             }
             if m.normals.len() != m.positions.len() {
                 return err(format!("mesh {i} ('{}'): normals missing", m.name));
@@ -323,7 +326,11 @@ impl Scene {
     /// World-space bounds of every instance.
     pub fn bounds(&self) -> Aabb {
         self.instances.iter().fold(Aabb::EMPTY, |b, inst| {
-            b.union(self.meshes[inst.mesh as usize].bounds().transformed(&inst.to_world))
+            b.union(
+                self.meshes[inst.mesh as usize]
+                    .bounds()
+                    .transformed(&inst.to_world),
+            )
         })
     }
 
