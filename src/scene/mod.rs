@@ -3,6 +3,7 @@
 
 pub mod defaults;
 pub mod error;
+pub mod generate;
 pub mod gltf;
 pub mod obj;
 pub mod texture;

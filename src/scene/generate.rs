@@ -1,0 +1,124 @@
+//! Procedural meshes for tests and benchmarks: a subdivided icosphere (closed, watertight by
+//! construction, with shared vertices) and a helper that wraps one mesh into a Scene.
+
+use std::collections::HashMap;
+
+use glam::{Mat4, Vec3};
+
+use super::{Instance, Material, Mesh, Scene};
+
+/// A unit icosphere with `subdivisions` levels of 4:1 splits (20 * 4^n triangles), optionally displaced
+/// radially by a smooth bumpy function of amplitude `bump` (0 for a sphere).
+pub fn icosphere(subdivisions: u32, bump: f32) -> Mesh {
+    let t = (1.0 + 5f32.sqrt()) / 2.0;
+    let mut pos: Vec<Vec3> = [
+        (-1.0, t, 0.0),
+        (1.0, t, 0.0),
+        (-1.0, -t, 0.0),
+        (1.0, -t, 0.0),
+        (0.0, -1.0, t),
+        (0.0, 1.0, t),
+        (0.0, -1.0, -t),
+        (0.0, 1.0, -t),
+        (t, 0.0, -1.0),
+        (t, 0.0, 1.0),
+        (-t, 0.0, -1.0),
+        (-t, 0.0, 1.0),
+    ]
+    .iter()
+    .map(|&(x, y, z)| Vec3::new(x, y, z).normalize())
+    .collect();
+    let mut tris: Vec<[u32; 3]> = vec![
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    for _ in 0..subdivisions {
+        let mut mid: HashMap<(u32, u32), u32> = HashMap::new();
+        let mut midpoint = |a: u32, b: u32, pos: &mut Vec<Vec3>| {
+            *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                pos.push(((pos[a as usize] + pos[b as usize]) * 0.5).normalize());
+                pos.len() as u32 - 1
+            })
+        };
+        let mut next = Vec::with_capacity(tris.len() * 4);
+        for [a, b, c] in tris {
+            let ab = midpoint(a, b, &mut pos);
+            let bc = midpoint(b, c, &mut pos);
+            let ca = midpoint(c, a, &mut pos);
+            next.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
+        }
+        tris = next;
+    }
+    let normals = pos.clone();
+    if bump != 0.0 {
+        for p in &mut pos {
+            let d = (p.x * 7.0).sin() * (p.y * 9.0).sin() * (p.z * 5.0).cos();
+            *p *= 1.0 + bump * d;
+        }
+    }
+    Mesh {
+        name: format!("icosphere-{subdivisions}"),
+        positions: pos,
+        normals,
+        indices: tris,
+        ..Default::default()
+    }
+}
+
+/// A scene holding one mesh at the identity, with the default material.
+pub fn single_mesh_scene(mut mesh: Mesh) -> Scene {
+    mesh.material = 0;
+    let triangles = mesh.indices.len();
+    Scene {
+        meshes: vec![mesh],
+        instances: vec![Instance::new(0, Mat4::IDENTITY)],
+        materials: vec![Material::default()],
+        stats: super::SceneStats {
+            meshes: 1,
+            primitives: 1,
+            triangles,
+            materials: 1,
+            ..Default::default()
+        },
+        ..Default::default()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn icosphere_is_closed() {
+        let m = icosphere(3, 0.0);
+        assert_eq!(m.indices.len(), 20 * 64);
+        // Closed 2-manifold: every edge is shared by exactly two triangles (Euler: V - E + F = 2).
+        let mut edges: HashMap<(u32, u32), u32> = HashMap::new();
+        for t in &m.indices {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                *edges.entry((a.min(b), a.max(b))).or_default() += 1;
+            }
+        }
+        assert!(edges.values().all(|&n| n == 2));
+        assert_eq!(m.positions.len() as i64 - edges.len() as i64 + m.indices.len() as i64, 2);
+    }
+}

@@ -1,0 +1,131 @@
+//! The binary end to end: renders of the demo scene, `info`, and bad invocations that must fail cleanly.
+
+mod common;
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn glint(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_glint"))
+        .args(args)
+        .output()
+        .expect("run glint")
+}
+
+fn demo() -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("assets/demo/demo.glb")
+        .to_string_lossy()
+        .into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn renders_the_demo_to_png_and_exr_with_each_backend() {
+    let dir = tempfile::tempdir().unwrap();
+    for backend in glint::accel::Backend::all_available() {
+        for ext in ["png", "exr"] {
+            let out = dir.path().join(format!("demo-{backend}.{ext}"));
+            let o = glint(&[
+                "render",
+                &demo(),
+                "-o",
+                out.to_str().unwrap(),
+                "--width",
+                "40",
+                "--height",
+                "30",
+                "--spp",
+                "2",
+                "--backend",
+                &backend.to_string(),
+            ]);
+            assert!(o.status.success(), "{}", stderr(&o));
+            assert!(stderr(&o).contains("Mrays/s"), "{}", stderr(&o));
+            let size = if ext == "png" {
+                let img = image::open(&out).unwrap();
+                (img.width() as usize, img.height() as usize)
+            } else {
+                let img = glint::film::read_exr(&out).unwrap();
+                assert!(!img.has_non_finite());
+                (img.width, img.height)
+            };
+            assert_eq!(size, (40, 30));
+        }
+    }
+    // Nothing but the four outputs: no temporary files left.
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 4);
+}
+
+#[test]
+fn info_prints_the_counts() {
+    let o = glint(&["info", &demo()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout);
+    for key in ["nodes", "meshes", "triangles", "materials", "lights", "cameras", "animations"] {
+        assert!(text.contains(key), "{key} missing from:\n{text}");
+    }
+    assert!(text.contains("lights      2"), "{text}");
+    assert!(text.contains("cameras     1"), "{text}");
+}
+
+#[test]
+fn bad_invocations_fail_with_a_message_and_leave_no_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.png");
+    let out = out.to_str().unwrap();
+    let missing = dir.path().join("nope.glb");
+    let demo = demo();
+    let demo = demo.as_str();
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["render", missing.to_str().unwrap(), "-o", out], "nope.glb"),
+        (vec!["render", demo, "-o", "x.bmp"], "x.bmp"),
+        (vec!["render", demo, "-o", out, "--width", "0"], "out of range"),
+        (vec!["render", demo, "-o", out, "--camera", "7"], "no camera"),
+        (vec!["render", demo, "-o", out, "--backend", "gpu"], "gpu"),
+        (vec!["render", demo, "-o", out, "--eye", "1,2"], "x,y,z"),
+        (vec!["info", missing.to_str().unwrap()], "nope.glb"),
+    ];
+    for (args, needle) in cases {
+        let o = glint(&args);
+        assert!(!o.status.success(), "{args:?} succeeded");
+        assert!(stderr(&o).contains(needle), "{args:?}: {}", stderr(&o));
+        assert!(!stderr(&o).contains("panicked"), "{args:?}: {}", stderr(&o));
+    }
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+#[test]
+fn same_seed_same_image_whatever_the_thread_count() {
+    let (scene, camera) = common::load_for_render(Path::new(&demo()), 32, 24);
+    let settings = glint::render::RenderSettings {
+        width: 32,
+        height: 24,
+        spp: 3,
+        max_depth: 4,
+        seed: 9,
+    };
+    let backend = glint::accel::Backend::Bvh;
+    let with_threads = |n: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .unwrap()
+            .install(|| common::render_with(&scene, &camera, backend, &settings))
+    };
+    let one = with_threads(1);
+    assert_eq!(one, with_threads(3));
+    let other_seed = common::render_with(
+        &scene,
+        &camera,
+        backend,
+        &glint::render::RenderSettings {
+            seed: 10,
+            ..settings.clone()
+        },
+    );
+    assert_ne!(one, other_seed);
+}
