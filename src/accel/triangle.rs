@@ -150,3 +150,42 @@ mod tests {
         }
     }
 }
+
+#[cfg(test)]
+mod direction_tests {
+    use super::*;
+
+    #[test]
+    fn every_direction_hits_a_triangle_around_its_target() {
+        let tri = [
+            Vec3::new(-1.0, -1.0, 0.3),
+            Vec3::new(1.5, -0.5, -0.2),
+            Vec3::new(0.0, 1.2, 0.1),
+        ];
+        let target = (tri[0] + tri[1] + tri[2]) / 3.0;
+        let mut missed = 0;
+        for i in 0..2000 {
+            let a = i as f32 * 0.618;
+            let b = i as f32 * 0.377;
+            let d = Vec3::new(a.cos() * b.sin(), a.sin() * b.sin(), b.cos()).normalize();
+            let o = target - d * 3.0;
+            if intersect(
+                o,
+                &RayShear::new(d),
+                tri[0],
+                tri[1],
+                tri[2],
+                0.0,
+                f32::INFINITY,
+            )
+            .is_none()
+            {
+                missed += 1;
+                if missed < 4 {
+                    eprintln!("missed d = {d:?}");
+                }
+            }
+        }
+        assert_eq!(missed, 0);
+    }
+}
