@@ -132,13 +132,13 @@ fn temp_path(path: &Path) -> PathBuf {
 }
 
 fn write_png(image: &Image, path: &Path, exposure: f32) -> Result<()> {
-    let mut buf = Vec::with_capacity(image.width * image.height * 4);
+    // Opaque RGB: the background is what the camera sees there (alpha is kept in EXR).
+    let mut buf = Vec::with_capacity(image.width * image.height * 3);
     for p in &image.pixels {
         buf.extend_from_slice(&[
             tonemap(p.x, exposure),
             tonemap(p.y, exposure),
             tonemap(p.z, exposure),
-            (p.w.clamp(0.0, 1.0) * 255.0 + 0.5) as u8,
         ]);
     }
     image::save_buffer_with_format(
@@ -146,7 +146,7 @@ fn write_png(image: &Image, path: &Path, exposure: f32) -> Result<()> {
         &buf,
         image.width as u32,
         image.height as u32,
-        image::ColorType::Rgba8,
+        image::ColorType::Rgb8,
         image::ImageFormat::Png,
     )?;
     Ok(())
