@@ -1,8 +1,395 @@
-//! OBJ loader (placeholder until written).
-use std::path::Path;
+//! OBJ + MTL loader, through `tobj` (triangulated, single index). Each tobj model (an `o`/`g` group,
+//! split again at every `usemtl`) becomes one `Mesh` with one identity `Instance`. MTL materials map
+//! onto the metallic-roughness `Material`: Kd -> base colour, Ns -> roughness, Ks -> specular strength,
+//! Ke -> emission, d -> alpha, Ni -> ior, map_Kd / map_Bump -> textures.
 
-use super::{LoadError, Scene};
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::io::BufReader;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::{Path, PathBuf};
 
+use glam::{Mat4, Vec2, Vec3, Vec4};
+
+use super::gltf::clean_mesh;
+use super::{AlphaMode, Instance, LoadError, Material, Mesh, Scene, TexRef, Texture, Wrap};
+
+/// Loads an .obj file and the .mtl files it names. Never panics on malformed input.
 pub fn load(path: &Path) -> Result<Scene, LoadError> {
-    Err(LoadError::new(path, "OBJ loading not written yet"))
+    match catch_unwind(AssertUnwindSafe(|| load_inner(path))) {
+        Ok(r) => r,
+        Err(_) => Err(LoadError::new(
+            path,
+            "malformed OBJ (the OBJ reader failed on an inconsistent file)",
+        )),
+    }
+}
+
+/// Roughness from a Phong exponent (the usual Blinn-Phong <-> Beckmann correspondence).
+pub fn roughness_from_ns(ns: f32) -> f32 {
+    (2.0 / (ns.max(0.0) + 2.0)).sqrt().clamp(0.0, 1.0)
+}
+
+/// The material of an OBJ without usable MTL: a grey dielectric.
+pub fn default_obj_material() -> Material {
+    Material {
+        name: "default".into(),
+        base_color: Vec4::new(0.8, 0.8, 0.8, 1.0),
+        metallic: 0.0,
+        roughness: 0.5,
+        ..Material::default()
+    }
+}
+
+fn load_inner(path: &Path) -> Result<Scene, LoadError> {
+    let file = std::fs::File::open(path)
+        .map_err(|e| LoadError::new(path, format!("cannot read file: {e}")))?;
+    let dir = path
+        .parent()
+        .unwrap_or_else(|| Path::new("."))
+        .to_path_buf();
+    let mtl_dirs: RefCell<Vec<PathBuf>> = RefCell::new(Vec::new());
+    let mtl_errors: RefCell<Vec<String>> = RefCell::new(Vec::new());
+    let opts = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ignore_points: true,
+        ignore_lines: true,
+    };
+    let mut reader = BufReader::new(file);
+    let (models, materials) = tobj::load_obj_buf(&mut reader, &opts, |mtl: &Path| {
+        let full = dir.join(mtl);
+        let r = tobj::load_mtl(&full);
+        match &r {
+            Ok(_) => mtl_dirs
+                .borrow_mut()
+                .push(full.parent().unwrap_or(&dir).to_path_buf()),
+            Err(e) => mtl_errors.borrow_mut().push(format!(
+                "material library '{}': {}; using a default material",
+                mtl.display(),
+                match e {
+                    tobj::LoadError::OpenFileFailed => "cannot open the file".to_string(),
+                    e => e.to_string(),
+                }
+            )),
+        }
+        r
+    })
+    .map_err(|e| LoadError::new(path, format!("malformed OBJ: {e}")))?;
+
+    let mut scene = Scene::default();
+    scene.warnings.extend(mtl_errors.into_inner());
+    let mut search: Vec<PathBuf> = mtl_dirs.into_inner();
+    search.push(dir.clone());
+
+    let materials = materials.unwrap_or_default();
+    let mut textures: HashMap<(PathBuf, bool), Option<u32>> = HashMap::new();
+    for m in &materials {
+        let mat = convert_material(m, &search, &mut scene, &mut textures);
+        scene.materials.push(mat);
+    }
+    let mut default_material: Option<u32> = None;
+
+    let mut dropped = 0;
+    for model in &models {
+        let tm = &model.mesh;
+        let positions: Vec<Vec3> = tm
+            .positions
+            .chunks_exact(3)
+            .map(|p| Vec3::new(p[0], p[1], p[2]))
+            .collect();
+        let n = positions.len();
+        let normals: Vec<Vec3> = if tm.normals.len() == 3 * n {
+            tm.normals
+                .chunks_exact(3)
+                .map(|p| Vec3::new(p[0], p[1], p[2]))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        // OBJ puts v = 0 at the bottom of the image; glint's textures have v = 0 at the top row.
+        let uvs: Vec<Vec2> = if tm.texcoords.len() == 2 * n {
+            tm.texcoords
+                .chunks_exact(2)
+                .map(|t| Vec2::new(t[0], 1.0 - t[1]))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let indices: Vec<[u32; 3]> = tm
+            .indices
+            .chunks_exact(3)
+            .map(|c| [c[0], c[1], c[2]])
+            .collect();
+        if let Some(&bad) = tm.indices.iter().find(|&&i| i as usize >= n) {
+            return Err(LoadError::new(
+                path,
+                format!(
+                    "object '{}': vertex index {bad} out of range ({n} vertices)",
+                    model.name
+                ),
+            ));
+        }
+        let material = match tm.material_id {
+            Some(id) if id < scene.materials.len() => id as u32,
+            _ => *default_material.get_or_insert_with(|| {
+                scene.materials.push(default_obj_material());
+                (scene.materials.len() - 1) as u32
+            }),
+        };
+        let mut mesh = Mesh {
+            name: model.name.clone(),
+            positions,
+            normals,
+            uvs,
+            tangents: Vec::new(),
+            indices,
+            material,
+        };
+        dropped += clean_mesh(&mut mesh);
+        if mesh.indices.is_empty() {
+            continue;
+        }
+        scene.meshes.push(mesh);
+        scene.instances.push(Instance::new(
+            (scene.meshes.len() - 1) as u32,
+            Mat4::IDENTITY,
+        ));
+    }
+    if dropped > 0 {
+        scene
+            .warnings
+            .push(format!("dropped {dropped} degenerate triangles"));
+    }
+    scene.stats.nodes = 0;
+    scene.stats.meshes = models.len();
+    scene.stats.primitives = scene.meshes.len();
+    scene.stats.materials = scene.materials.len();
+    scene.stats.textures = scene.textures.len();
+    scene.stats.triangles = scene.triangle_count();
+    Ok(scene)
+}
+
+fn parse3(s: &str) -> Option<Vec3> {
+    let v: Vec<f32> = s
+        .split_whitespace()
+        .take(3)
+        .map_while(|w| w.parse().ok())
+        .collect();
+    match v.len() {
+        3 => Some(Vec3::new(v[0], v[1], v[2])),
+        1 => Some(Vec3::splat(v[0])),
+        _ => None,
+    }
+}
+
+fn convert_material(
+    m: &tobj::Material,
+    search: &[PathBuf],
+    scene: &mut Scene,
+    textures: &mut HashMap<(PathBuf, bool), Option<u32>>,
+) -> Material {
+    let kd = m.diffuse.map(Vec3::from).unwrap_or(Vec3::splat(0.8));
+    let alpha = match (m.dissolve, m.unknown_param.get("Tr")) {
+        (Some(d), _) => d,
+        (None, Some(tr)) => 1.0 - tr.trim().parse::<f32>().unwrap_or(0.0),
+        _ => 1.0,
+    }
+    .clamp(0.0, 1.0);
+    let emissive = m
+        .emissive
+        .map(Vec3::from)
+        .or_else(|| m.unknown_param.get("Ke").and_then(|s| parse3(s)))
+        .unwrap_or(Vec3::ZERO)
+        .max(Vec3::ZERO);
+    let mut mat = Material {
+        name: m.name.clone(),
+        base_color: kd.extend(alpha),
+        metallic: 0.0,
+        roughness: m.shininess.map(roughness_from_ns).unwrap_or(0.5),
+        emissive: if emissive.is_finite() {
+            emissive
+        } else {
+            Vec3::ZERO
+        },
+        alpha_mode: if alpha < 1.0 {
+            AlphaMode::Blend
+        } else {
+            AlphaMode::Opaque
+        },
+        // A specular colour of zero means a purely diffuse surface.
+        specular: m
+            .specular
+            .map(|ks| Vec3::from(ks).max_element().clamp(0.0, 1.0))
+            .unwrap_or(1.0),
+        ior: m
+            .optical_density
+            .filter(|n| n.is_finite() && *n >= 1.0)
+            .unwrap_or(1.5),
+        ..Material::default()
+    };
+    let label = format!("material '{}'", m.name);
+    if let Some(t) = &m.diffuse_texture {
+        mat.base_color_tex = texture(t, true, search, scene, textures, &label).map(TexRef::new);
+    }
+    let normal = m.normal_texture.clone().or_else(|| {
+        ["norm", "map_bump", "map_Bump", "bump"]
+            .iter()
+            .find_map(|k| m.unknown_param.get(*k).cloned())
+    });
+    if let Some(t) = &normal {
+        mat.normal_tex = texture(t, false, search, scene, textures, &label).map(TexRef::new);
+    }
+    if let Some(t) = m.unknown_param.get("map_Ke") {
+        mat.emissive_tex = texture(t, true, search, scene, textures, &label).map(TexRef::new);
+        if mat.emissive == Vec3::ZERO {
+            mat.emissive = Vec3::ONE;
+        }
+    }
+    mat
+}
+
+/// Finds a texture named in an MTL statement (which may carry options such as `-bm 1` before the
+/// file name) next to the MTL or the OBJ.
+fn resolve(spec: &str, search: &[PathBuf]) -> Option<PathBuf> {
+    let spec = spec.trim().replace('\\', "/");
+    let last = spec.split_whitespace().last().unwrap_or("").to_string();
+    for cand in [spec.as_str(), last.as_str()] {
+        if cand.is_empty() {
+            continue;
+        }
+        for d in search {
+            let p = d.join(cand);
+            if p.is_file() {
+                return Some(p);
+            }
+        }
+    }
+    None
+}
+
+fn texture(
+    spec: &str,
+    srgb: bool,
+    search: &[PathBuf],
+    scene: &mut Scene,
+    textures: &mut HashMap<(PathBuf, bool), Option<u32>>,
+    label: &str,
+) -> Option<u32> {
+    let Some(file) = resolve(spec, search) else {
+        scene.warnings.push(format!(
+            "{label}: texture '{}' not found; ignored",
+            spec.trim()
+        ));
+        return None;
+    };
+    if let Some(t) = textures.get(&(file.clone(), srgb)) {
+        return *t;
+    }
+    let out = match image::open(&file) {
+        Ok(img) => {
+            let img = img.to_rgba8();
+            scene.textures.push(Texture {
+                name: file
+                    .file_name()
+                    .map(|f| f.to_string_lossy().into_owned())
+                    .unwrap_or_default(),
+                width: img.width() as usize,
+                height: img.height() as usize,
+                pixels: img.pixels().map(|p| p.0).collect(),
+                srgb,
+                wrap_s: Wrap::Repeat,
+                wrap_t: Wrap::Repeat,
+            });
+            Some((scene.textures.len() - 1) as u32)
+        }
+        Err(e) => {
+            scene.warnings.push(format!(
+                "{label}: cannot load texture '{}': {e}; ignored",
+                file.display()
+            ));
+            None
+        }
+    };
+    textures.insert((file, srgb), out);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Scene;
+
+    #[test]
+    fn no_mtl_gives_grey_dielectric_and_computed_normals() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("q.obj");
+        std::fs::write(&p, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap();
+        let s = Scene::load(&p).unwrap();
+        assert_eq!(s.meshes.len(), 1);
+        assert_eq!(s.instances.len(), 1);
+        assert!(s.instances[0].is_identity());
+        assert_eq!(s.stats.triangles, 2);
+        assert_eq!(s.stats.nodes, 0);
+        let m = &s.materials[0];
+        assert_eq!(m.base_color, Vec4::new(0.8, 0.8, 0.8, 1.0));
+        assert_eq!((m.metallic, m.roughness), (0.0, 0.5));
+        assert!(s.meshes[0]
+            .normals
+            .iter()
+            .all(|n| (*n - Vec3::Z).length() < 1e-6));
+        assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+    }
+
+    #[test]
+    fn mtl_maps_onto_metallic_roughness_and_splits_by_material() {
+        let dir = tempfile::tempdir().unwrap();
+        // 2x2 texture: top row red, bottom row blue (v = 0 is the bottom in OBJ).
+        let img = image::RgbaImage::from_raw(1, 2, vec![255, 0, 0, 255, 0, 0, 255, 255]).unwrap();
+        img.save(dir.path().join("rb.png")).unwrap();
+        std::fs::write(
+            dir.path().join("m.mtl"),
+            "newmtl lamp\nKd 0.5 0.25 1\nKs 0 0 0\nNs 98\nKe 17 12 4\nNi 1.33\n\
+             newmtl glass\nKd 1 1 1\nKs 1 1 1\nd 0.5\nmap_Kd -bm 1 rb.png\nmap_Bump nothere.png\n",
+        )
+        .unwrap();
+        let p = dir.path().join("m.obj");
+        std::fs::write(
+            &p,
+            "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n\
+             usemtl lamp\nf 1/1 2/2 3/3\nusemtl glass\nf 1/1 2/2 3/3\n",
+        )
+        .unwrap();
+        let s = Scene::load(&p).unwrap();
+        assert_eq!(s.meshes.len(), 2);
+        assert_eq!(s.instances.len(), 2);
+        let lamp = s.material_of_mesh(0);
+        assert_eq!(lamp.name, "lamp");
+        assert_eq!(lamp.base_color, Vec4::new(0.5, 0.25, 1.0, 1.0));
+        assert_eq!(lamp.emissive, Vec3::new(17.0, 12.0, 4.0));
+        assert!((lamp.roughness - 0.1414).abs() < 1e-3);
+        assert_eq!(lamp.metallic, 0.0);
+        assert_eq!(lamp.specular, 0.0);
+        assert!((lamp.ior - 1.33).abs() < 1e-6);
+        let glass = s.material_of_mesh(1);
+        assert_eq!(glass.alpha_mode, AlphaMode::Blend);
+        assert_eq!(glass.base_color.w, 0.5);
+        let t = glass.base_color_tex.expect("map_Kd with options resolves");
+        let tex = &s.textures[t.texture as usize];
+        assert!(tex.srgb);
+        assert_eq!(tex.wrap_s, Wrap::Repeat);
+        assert!(glass.normal_tex.is_none());
+        assert!(
+            s.warnings.iter().any(|w| w.contains("nothere.png")),
+            "{:?}",
+            s.warnings
+        );
+        // OBJ vt (0, 0) is the bottom-left: it must sample the bottom (blue) row.
+        let uv = s.meshes[1].uvs[0];
+        assert_eq!(uv, Vec2::new(0.0, 1.0));
+        let c = tex.sample(Vec2::new(0.5, 0.75));
+        assert!(c.z > 0.9 && c.x < 0.1, "{c}");
+        assert_eq!(s.stats.meshes, 2);
+        assert_eq!(s.stats.materials, 2);
+    }
 }
