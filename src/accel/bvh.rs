@@ -137,9 +137,7 @@ impl Bvh {
         let mut sp = 0;
         let mut node_idx = 0u32;
         let root = &self.nodes[0];
-        if slab(root, ray.o, inv, neg, far_scale, ray.t_min, t_max).is_none() {
-            return None;
-        }
+        slab(root, ray.o, inv, neg, far_scale, ray.t_min, t_max)?;
         loop {
             let node = &self.nodes[node_idx as usize];
             if node.count > 0 {
@@ -351,7 +349,8 @@ fn find_split(refs: &[PrimRef], bounds: Aabb) -> Option<Split> {
     let mut best: Option<(f32, Split)> = None;
     for axis in 0..3 {
         let extent = cb.max[axis] - cb.min[axis];
-        if !(extent > 0.0) {
+        // Also skips a NaN extent.
+        if extent.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
             continue;
         }
         let split0 = Split {
