@@ -88,8 +88,13 @@ impl Agreement {
     }
 }
 
-fn close(a: f32, b: f32) -> bool {
-    (a - b).abs() <= T_TOLERANCE * a.abs().max(b.abs()).max(f32::MIN_POSITIVE)
+/// Whether two hit distances along `ray` agree: within `T_TOLERANCE` relative, or within the rounding
+/// error of the hit point itself (a few ulps of the largest coordinate involved), which is what bounds
+/// the agreement of tiny distances from origins far from zero.
+fn close(ray: &Ray, a: f32, b: f32) -> bool {
+    let t = a.abs().max(b.abs());
+    let magnitude = ray.o.abs().max_element() + t * ray.d.abs().max_element();
+    (a - b).abs() <= T_TOLERANCE * t + 16.0 * f32::EPSILON * magnitude
 }
 
 /// Compares closest hits and occlusion answers of `a` and `b` for every ray.
@@ -103,7 +108,7 @@ pub fn compare(a: &dyn Accel, b: &dyn Accel, rays: &[Ray]) -> Agreement {
                 g.hits += ha.is_some() as usize;
                 match (ha, hb) {
                     (None, None) => g.same += 1,
-                    (Some(x), Some(y)) if close(x.t, y.t) => {
+                    (Some(x), Some(y)) if close(ray, x.t, y.t) => {
                         if (x.inst, x.prim) == (y.inst, y.prim) {
                             g.same += 1
                         } else {

@@ -1,17 +1,506 @@
-//! Embree 4 backend (placeholder until written).
-use std::sync::Arc;
+//! Embree 4 backend: builds one Embree scene over a glint `Scene` and answers `Accel` queries with it.
+//! Meshes placed once are flattened into world space; meshes placed more often become instanced child scenes.
+//!
+//! ABI note (see shared/EMBREE.md, section 3): `embree4-sys` 0.0.12 carries Embree 4.2 headers while the
+//! library loaded is 4.4, whose `RTCHit` is longer (`instPrimID`). Every ray-hit handed to Embree is
+//! therefore a padded [`RayHit`], and the intersect/occluded arguments are always NULL (the query
+//! context differs in size between the two versions). All `unsafe` of the crate's Embree use lives here.
+
+use std::cell::Cell;
+use std::ffi::{c_char, c_void, CStr};
+use std::mem::size_of;
+use std::ptr;
+use std::sync::{Arc, Mutex};
+
+use embree4_sys as sys;
 
 use super::{Accel, AccelError};
 use crate::geometry::{Hit, Ray};
-use crate::scene::Scene;
+use crate::scene::{Mesh, Scene};
 
-pub struct EmbreeAccel {
-    _scene: Arc<Scene>,
+/// `RTC_INVALID_GEOMETRY_ID`: the geomID/instID of "no hit" / "not inside an instance".
+const INVALID_ID: u32 = sys::RTC_INVALID_GEOMETRY_ID;
+
+/// An `RTCRayHit` with room for the fields Embree 4.4 appends (`RTCRayHit` is 80 bytes in the 4.2
+/// bindings, 96 in the 4.4 library, which writes `instPrimID` at bytes 80..84 on every hit).
+/// Only pointers to the whole wrapper are handed to Embree.
+#[repr(C, align(16))]
+struct RayHit {
+    rh: sys::RTCRayHit,
+    _pad: [u32; 4],
 }
 
+// The layout the library expects: 96-byte ray-hits, and a 48-byte RTCRay (unchanged since 4.0).
+const _: () = assert!(size_of::<RayHit>() == 96);
+const _: () = assert!(size_of::<sys::RTCRay>() == 48);
+const _: () = assert!(size_of::<sys::RTCRayHit>() == 80);
+
+/// Embree's ray for `ray`, tagged with `id` (the index of the world ray the alpha filter should use).
+///
+/// Embree accepts hits with `t` in `(tnear, tfar]`, glint in `(t_min, t_max)`: `tfar` is the float just
+/// below `t_max` so both backends agree at the boundary (`inf` becomes `f32::MAX`).
+fn rtc_ray(ray: &Ray, id: u32) -> sys::RTCRay {
+    sys::RTCRay {
+        org_x: ray.o.x,
+        org_y: ray.o.y,
+        org_z: ray.o.z,
+        tnear: ray.t_min,
+        dir_x: ray.d.x,
+        dir_y: ray.d.y,
+        dir_z: ray.d.z,
+        time: 0.0,
+        tfar: ray.t_max.next_down(),
+        mask: u32::MAX,
+        id,
+        flags: 0,
+    }
+}
+
+impl RayHit {
+    fn new(ray: &Ray, id: u32) -> Self {
+        Self {
+            rh: sys::RTCRayHit {
+                ray: rtc_ray(ray, id),
+                hit: sys::RTCHit {
+                    Ng_x: 0.0,
+                    Ng_y: 0.0,
+                    Ng_z: 0.0,
+                    u: 0.0,
+                    v: 0.0,
+                    primID: INVALID_ID,
+                    geomID: INVALID_ID,
+                    instID: [INVALID_ID; 1],
+                },
+            },
+            _pad: [0; 4],
+        }
+    }
+
+    /// Our hit from Embree's answer. Top-level geometry IDs are instance indices (see `build`): an
+    /// instanced hit names its instance in `instID[0]`, a flattened one in `geomID`.
+    fn hit(&self) -> Option<Hit> {
+        let h = &self.rh.hit;
+        if h.geomID == INVALID_ID {
+            return None;
+        }
+        let inst = if h.instID[0] != INVALID_ID {
+            h.instID[0]
+        } else {
+            h.geomID
+        };
+        Some(Hit {
+            t: self.rh.ray.tfar,
+            u: h.u,
+            v: h.v,
+            inst,
+            prim: h.primID,
+        })
+    }
+}
+
+thread_local! {
+    /// The world-space rays of the query running on this thread, for the alpha filter: inside an
+    /// instance Embree hands the filter an object-space ray, but `Scene::alpha_passes` must see the
+    /// world ray (stochastic blending hashes it) to agree with the BVH. Set only around a query.
+    static WORLD_RAYS: Cell<(*const Ray, usize)> = const { Cell::new((ptr::null(), 0)) };
+}
+
+/// Publishes `rays` to this thread's alpha filter for the duration of `f`.
+fn with_world_rays<R>(rays: &[Ray], f: impl FnOnce() -> R) -> R {
+    /// Clears the slot even if `f` unwinds, so no dangling pointer is left behind.
+    struct Reset((*const Ray, usize));
+    impl Drop for Reset {
+        fn drop(&mut self) {
+            WORLD_RAYS.with(|w| w.set(self.0));
+        }
+    }
+    let _reset = Reset(WORLD_RAYS.with(|w| w.replace((rays.as_ptr(), rays.len()))));
+    f()
+}
+
+/// Intersection and occlusion filter for geometries whose material needs an alpha test: rejects
+/// (clears `valid`) every candidate hit that `Scene::alpha_passes` refuses. Written for any `N`.
+///
+/// # Safety
+/// Called by Embree only, with the arguments of a filter callback; the geometry user pointer is the
+/// `Scene` owned (through an `Arc`) by the `EmbreeAccel` being queried.
+unsafe extern "C" fn alpha_filter(args: *const sys::RTCFilterFunctionNArguments) {
+    // SAFETY: Embree passes a valid argument struct; the user pointer was set in `triangles` to the
+    // scene kept alive by the accelerator for as long as queries can run.
+    let args = unsafe { &*args };
+    // SAFETY: as above.
+    let scene = unsafe { &*(args.geometryUserPtr as *const Scene) };
+    let n = args.N as usize;
+    // RTCHitN and RTCRayN are SOA blocks of N lanes, 4 bytes a field. RTCHitN: Ng_x, Ng_y, Ng_z, u, v,
+    // primID, geomID, instID[0] (the same up to here in 4.2 and 4.4). RTCRayN: org_x, org_y, org_z,
+    // tnear, dir_x, dir_y, dir_z, time, tfar, mask, id, flags.
+    let hit = args.hit as *const u32;
+    let ray = args.ray as *const u32;
+    let (world_ptr, world_len) = WORLD_RAYS.with(Cell::get);
+    for lane in 0..n {
+        // SAFETY: `valid`, `hit` and `ray` each hold N lanes per field, per Embree's filter contract;
+        // the world-ray slice was published by `with_world_rays` on this thread and outlives the query.
+        unsafe {
+            let valid = args.valid.add(lane);
+            if *valid == 0 {
+                continue;
+            }
+            let field = |base: *const u32, f: usize| *base.add(f * n + lane);
+            let u = f32::from_bits(field(hit, 3));
+            let v = f32::from_bits(field(hit, 4));
+            let prim = field(hit, 5);
+            let geom = field(hit, 6);
+            let inst0 = field(hit, 7);
+            let inst = if inst0 != INVALID_ID { inst0 } else { geom };
+            let id = field(ray, 10) as usize;
+            let world = if world_len == 1 {
+                *world_ptr
+            } else if id < world_len {
+                *world_ptr.add(id)
+            } else {
+                // Not reachable through this module's queries; the ray given is right at least for
+                // flattened (world-space) geometry.
+                let f = |k| f32::from_bits(field(ray, k));
+                Ray {
+                    o: glam::Vec3::new(f(0), f(1), f(2)),
+                    d: glam::Vec3::new(f(4), f(5), f(6)),
+                    t_min: f(3),
+                    t_max: f(8),
+                }
+            };
+            if !scene.alpha_passes(inst, prim, u, v, &world) {
+                *valid = 0;
+            }
+        }
+    }
+}
+
+/// Collects Embree's error messages (the 4.2 API has no "last error message" call).
+///
+/// # Safety
+/// Called by Embree only; `user` is the `Mutex<Vec<String>>` boxed in the accelerator, which outlives
+/// the device.
+unsafe extern "C" fn on_error(user: *mut c_void, code: sys::RTCError, msg: *const c_char) {
+    let text = if msg.is_null() {
+        String::new()
+    } else {
+        // SAFETY: Embree passes a NUL-terminated message valid for the duration of the call.
+        unsafe { CStr::from_ptr(msg) }
+            .to_string_lossy()
+            .into_owned()
+    };
+    // SAFETY: see the function's contract: `user` points to a live Mutex<Vec<String>>.
+    let sink = unsafe { &*(user as *const Mutex<Vec<String>>) };
+    if let Ok(mut v) = sink.lock() {
+        v.push(format!("{code:?}: {text}"));
+    }
+}
+
+/// Intel Embree 4 over the scene's instances.
+pub struct EmbreeAccel {
+    device: sys::RTCDevice,
+    /// The top-level scene; its geometry IDs are instance indices.
+    top: sys::RTCScene,
+    /// Object-space scenes of meshes used by several instances (released in `Drop`).
+    children: Vec<sys::RTCScene>,
+    /// Whether any geometry has the alpha filter, i.e. whether queries must publish their world rays.
+    filtered: bool,
+    /// Messages from Embree's error callback; boxed so the pointer given to Embree stays put.
+    errors: Box<Mutex<Vec<String>>>,
+    /// The scene the hits refer to; also the user data of filtered geometries, so it must outlive them.
+    scene: Arc<Scene>,
+}
+
+// SAFETY: the raw handles are only used for queries after `build` committed every scene; Embree
+// documents committed scenes as safe to query from any number of threads at once, and the device and
+// scenes are reference counted internally. Nothing is mutated after `build` (the error sink is a Mutex).
+unsafe impl Send for EmbreeAccel {}
+// SAFETY: as above: `&self` methods only run concurrent read-only queries on committed scenes.
+unsafe impl Sync for EmbreeAccel {}
+
 impl EmbreeAccel {
-    pub fn build(_scene: Arc<Scene>) -> Result<Self, AccelError> {
-        Err(AccelError::Embree("not written yet".into()))
+    /// Builds Embree scenes over `scene`: one device, one committed top-level scene.
+    pub fn build(scene: Arc<Scene>) -> Result<Self, AccelError> {
+        // SAFETY: a NULL config asks for the default device; a NULL result is handled below.
+        let device = unsafe { sys::rtcNewDevice(ptr::null()) };
+        if device.is_null() {
+            // SAFETY: with a NULL device, rtcGetDeviceError reports the thread's creation error.
+            let code = unsafe { sys::rtcGetDeviceError(ptr::null_mut()) };
+            return Err(AccelError::Embree(format!(
+                "cannot create a device ({code:?})"
+            )));
+        }
+        // From here on `Drop` releases whatever exists, also on the error paths.
+        let mut accel = Self {
+            device,
+            top: ptr::null_mut(),
+            children: Vec::new(),
+            filtered: false,
+            errors: Box::new(Mutex::new(Vec::new())),
+            scene,
+        };
+        let sink = &*accel.errors as *const Mutex<Vec<String>> as *mut c_void;
+        // SAFETY: `device` is live; `sink` points into a Box owned by `accel`, which releases the
+        // device in `Drop` before the Box is freed.
+        unsafe { sys::rtcSetDeviceErrorFunction(device, Some(on_error), sink) };
+        accel.check("creating the device")?;
+        accel.populate()?;
+        Ok(accel)
+    }
+
+    /// Fills and commits the top-level scene (and child scenes of shared meshes).
+    fn populate(&mut self) -> Result<(), AccelError> {
+        let scene = Arc::clone(&self.scene);
+        // Owned by `self` and released in `Drop`.
+        self.top = self.new_scene()?;
+
+        let mut uses = vec![0usize; scene.meshes.len()];
+        for inst in &scene.instances {
+            uses[inst.mesh as usize] += 1;
+        }
+        // Child scene of each shared mesh, built on first use.
+        let mut child_of: Vec<Option<sys::RTCScene>> = vec![None; scene.meshes.len()];
+
+        for (index, inst) in scene.instances.iter().enumerate() {
+            let m = inst.mesh as usize;
+            let mesh = &scene.meshes[m];
+            if mesh.indices.is_empty() || mesh.positions.is_empty() {
+                continue; // nothing to hit; Embree would reject empty buffers
+            }
+            let alpha = scene.material_of_mesh(inst.mesh).needs_alpha_test();
+            self.filtered |= alpha;
+            let id = u32::try_from(index)
+                .map_err(|_| AccelError::Embree("too many instances".into()))?;
+            let geom = if uses[m] == 1 {
+                // Cheaper than an instance: no transform during traversal, one BVH level less.
+                self.triangles(mesh, Some(&inst.to_world), alpha)?
+            } else {
+                let child = match child_of[m] {
+                    Some(c) => c,
+                    None => {
+                        let c = self.child_scene(mesh, alpha)?;
+                        child_of[m] = Some(c);
+                        c
+                    }
+                };
+                let cols = inst.to_world.to_cols_array();
+                // SAFETY: device and child scene are live and the child is committed; Embree copies the
+                // 16 floats of the column-major matrix during the call.
+                unsafe {
+                    let g = sys::rtcNewGeometry(self.device, sys::RTCGeometryType::INSTANCE);
+                    if !g.is_null() {
+                        sys::rtcSetGeometryInstancedScene(g, child);
+                        sys::rtcSetGeometryTransform(
+                            g,
+                            0,
+                            sys::RTCFormat::FLOAT4X4_COLUMN_MAJOR,
+                            cols.as_ptr().cast(),
+                        );
+                        sys::rtcCommitGeometry(g);
+                    }
+                    g
+                }
+            };
+            self.check("creating a geometry")?;
+            // Geometry ID = instance index, so hits name their instance without a lookup table.
+            // SAFETY: `geom` is a live, committed geometry (checked above); the scene takes its own
+            // reference, so ours is released right away.
+            unsafe {
+                sys::rtcAttachGeometryByID(self.top, geom, id);
+                sys::rtcReleaseGeometry(geom);
+            }
+            self.check("attaching a geometry")?;
+        }
+        // SAFETY: the top scene is live and fully populated.
+        unsafe { sys::rtcCommitScene(self.top) };
+        self.check("committing the scene")
+    }
+
+    /// A committed object-space scene holding one mesh, for instancing; owned by `self.children`.
+    fn child_scene(&mut self, mesh: &Mesh, alpha: bool) -> Result<sys::RTCScene, AccelError> {
+        // Recorded in `children` at once so `Drop` releases it on every path.
+        let child = self.new_scene()?;
+        self.children.push(child);
+        let geom = self.triangles(mesh, None, alpha)?;
+        // SAFETY: `child` and `geom` are live; the scene keeps its own reference to the geometry.
+        unsafe {
+            sys::rtcAttachGeometry(child, geom);
+            sys::rtcReleaseGeometry(geom);
+            sys::rtcCommitScene(child);
+        }
+        self.check("committing a child scene")?;
+        Ok(child)
+    }
+
+    /// An empty scene in robust mode; the caller owns the handle.
+    ///
+    /// Without `ROBUST`, Embree's fast triangle test lets about 2% of rays aimed exactly at shared
+    /// edges and vertices of a closed mesh slip through (tests/robustness.rs); glint promises
+    /// watertightness like the BVH's, at a small cost in speed.
+    fn new_scene(&self) -> Result<sys::RTCScene, AccelError> {
+        // SAFETY: the device is live; a NULL scene is reported as an error.
+        let scene = unsafe { sys::rtcNewScene(self.device) };
+        if scene.is_null() {
+            return Err(self.error("creating a scene"));
+        }
+        // SAFETY: `scene` is live and not yet committed.
+        unsafe { sys::rtcSetSceneFlags(scene, sys::RTCSceneFlags::ROBUST) };
+        if let Err(e) = self.check("creating a scene") {
+            // SAFETY: `scene` is ours and referenced nowhere else.
+            unsafe { sys::rtcReleaseScene(scene) };
+            return Err(e);
+        }
+        Ok(scene)
+    }
+
+    /// A committed triangle geometry of `mesh`, its vertices moved by `to_world` when given. The
+    /// caller owns the returned reference.
+    fn triangles(
+        &self,
+        mesh: &Mesh,
+        to_world: Option<&glam::Mat4>,
+        alpha: bool,
+    ) -> Result<sys::RTCGeometry, AccelError> {
+        // SAFETY: the device is live. Each buffer returned by rtcSetNewGeometryBuffer is checked for
+        // NULL and holds `count` items of `stride` bytes (Embree adds the tail padding its SIMD loads
+        // need), 4-byte aligned; we write exactly that many f32/u32 triples.
+        let geom = unsafe {
+            let geom = sys::rtcNewGeometry(self.device, sys::RTCGeometryType::TRIANGLE);
+            if geom.is_null() {
+                return Err(self.error("creating a triangle geometry"));
+            }
+            let verts = sys::rtcSetNewGeometryBuffer(
+                geom,
+                sys::RTCBufferType::VERTEX,
+                0,
+                sys::RTCFormat::FLOAT3,
+                12,
+                mesh.positions.len(),
+            ) as *mut [f32; 3];
+            let tris = sys::rtcSetNewGeometryBuffer(
+                geom,
+                sys::RTCBufferType::INDEX,
+                0,
+                sys::RTCFormat::UINT3,
+                12,
+                mesh.indices.len(),
+            ) as *mut [u32; 3];
+            if verts.is_null() || tris.is_null() {
+                sys::rtcReleaseGeometry(geom);
+                return Err(self.error("allocating geometry buffers"));
+            }
+            for (i, &p) in mesh.positions.iter().enumerate() {
+                let p = to_world.map_or(p, |m| m.transform_point3(p));
+                verts.add(i).write(p.to_array());
+            }
+            ptr::copy_nonoverlapping(mesh.indices.as_ptr(), tris, mesh.indices.len());
+            if alpha {
+                sys::rtcSetGeometryUserData(geom, Arc::as_ptr(&self.scene) as *mut c_void);
+                sys::rtcSetGeometryIntersectFilterFunction(geom, Some(alpha_filter));
+                sys::rtcSetGeometryOccludedFilterFunction(geom, Some(alpha_filter));
+            }
+            sys::rtcCommitGeometry(geom);
+            geom
+        };
+        if let Err(e) = self.check("building a triangle geometry") {
+            // SAFETY: `geom` is live and ours; nothing else references it yet.
+            unsafe { sys::rtcReleaseGeometry(geom) };
+            return Err(e);
+        }
+        Ok(geom)
+    }
+
+    /// Ok unless Embree reported an error (by code on this thread, or through the callback).
+    fn check(&self, what: &str) -> Result<(), AccelError> {
+        // SAFETY: the device is live for the lifetime of `self`.
+        let code = unsafe { sys::rtcGetDeviceError(self.device) };
+        let pending = self.errors.lock().is_ok_and(|v| !v.is_empty());
+        if code == sys::RTCError::NONE && !pending {
+            return Ok(());
+        }
+        Err(self.error(what))
+    }
+
+    /// An `AccelError` for `what`, with (and clearing) the messages Embree sent.
+    fn error(&self, what: &str) -> AccelError {
+        let msgs = self
+            .errors
+            .lock()
+            .map(|mut v| std::mem::take(&mut *v).join("; "))
+            .unwrap_or_default();
+        AccelError::Embree(if msgs.is_empty() {
+            format!("{what} failed")
+        } else {
+            format!("{what}: {msgs}")
+        })
+    }
+
+    /// Runs `f` with this thread's world rays published when the scene has alpha-tested geometry.
+    fn query<R>(&self, rays: &[Ray], f: impl FnOnce() -> R) -> R {
+        if self.filtered {
+            with_world_rays(rays, f)
+        } else {
+            f()
+        }
+    }
+
+    /// Closest hits of many rays (one `rtcIntersect1` each); `out[i]` is the answer for `rays[i]`.
+    pub fn intersect_batch(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
+        assert_eq!(rays.len(), out.len(), "one output slot per ray");
+        self.query(rays, || {
+            for (i, (ray, slot)) in rays.iter().zip(out.iter_mut()).enumerate() {
+                // The ray id indexes `rays`, where the alpha filter finds the world ray.
+                let mut rh = RayHit::new(ray, i as u32);
+                self.intersect1(&mut rh);
+                *slot = rh.hit();
+            }
+        });
+    }
+
+    /// Any-hit answers for many rays (one `rtcOccluded1` each); `out[i]` is the answer for `rays[i]`.
+    pub fn occluded_batch(&self, rays: &[Ray], out: &mut [bool]) {
+        assert_eq!(rays.len(), out.len(), "one output slot per ray");
+        self.query(rays, || {
+            for (i, (ray, slot)) in rays.iter().zip(out.iter_mut()).enumerate() {
+                let mut r = rtc_ray(ray, i as u32);
+                self.occluded1(&mut r);
+                *slot = r.tfar == f32::NEG_INFINITY;
+            }
+        });
+    }
+
+    fn intersect1(&self, rh: &mut RayHit) {
+        // SAFETY: the top scene is committed; the pointer covers the whole padded 96-byte RayHit (the
+        // 4.4 library writes past the 80-byte RTCRayHit of the bindings); NULL arguments are allowed.
+        unsafe {
+            sys::rtcIntersect1(
+                self.top,
+                (rh as *mut RayHit).cast::<sys::RTCRayHit>(),
+                ptr::null_mut(),
+            )
+        };
+    }
+
+    fn occluded1(&self, ray: &mut sys::RTCRay) {
+        // SAFETY: the top scene is committed; RTCRay has the same 48-byte layout in 4.2 and 4.4 and
+        // occlusion writes only `tfar`; NULL arguments are allowed.
+        unsafe { sys::rtcOccluded1(self.top, ray, ptr::null_mut()) };
+    }
+}
+
+impl Drop for EmbreeAccel {
+    fn drop(&mut self) {
+        // SAFETY: each handle is ours and released once; the top scene goes first (its instances hold
+        // references to the children), the device last. `errors` and `scene` outlive these calls.
+        unsafe {
+            if !self.top.is_null() {
+                sys::rtcReleaseScene(self.top);
+            }
+            for &c in &self.children {
+                sys::rtcReleaseScene(c);
+            }
+            sys::rtcReleaseDevice(self.device);
+        }
     }
 }
 
@@ -19,10 +508,330 @@ impl Accel for EmbreeAccel {
     fn name(&self) -> &'static str {
         "embree"
     }
-    fn intersect(&self, _ray: &Ray) -> Option<Hit> {
-        None
+
+    fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        let mut rh = RayHit::new(ray, 0);
+        self.query(std::slice::from_ref(ray), || self.intersect1(&mut rh));
+        rh.hit()
     }
-    fn occluded(&self, _ray: &Ray) -> bool {
-        false
+
+    fn occluded(&self, ray: &Ray) -> bool {
+        let mut r = rtc_ray(ray, 0);
+        self.query(std::slice::from_ref(ray), || self.occluded1(&mut r));
+        // Embree marks an occluded ray by setting tfar to -inf.
+        r.tfar == f32::NEG_INFINITY
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{AlphaMode, Instance, Material};
+    use glam::{Mat4, Vec3, Vec4};
+    use rayon::prelude::*;
+
+    /// The unit quad [0,1]^2 at z = 0: triangle 0 = (0,1,2), triangle 1 = (0,2,3).
+    fn quad() -> Mesh {
+        Mesh {
+            name: "quad".into(),
+            positions: vec![
+                Vec3::new(0.0, 0.0, 0.0),
+                Vec3::new(1.0, 0.0, 0.0),
+                Vec3::new(1.0, 1.0, 0.0),
+                Vec3::new(0.0, 1.0, 0.0),
+            ],
+            normals: vec![Vec3::Z; 4],
+            indices: vec![[0, 1, 2], [0, 2, 3]],
+            ..Default::default()
+        }
+    }
+
+    fn scene_of(meshes: Vec<Mesh>, instances: Vec<Instance>, materials: Vec<Material>) -> Scene {
+        let s = Scene {
+            meshes,
+            instances,
+            materials,
+            ..Default::default()
+        };
+        s.validate().expect("valid test scene");
+        s
+    }
+
+    fn build(s: Scene) -> EmbreeAccel {
+        EmbreeAccel::build(Arc::new(s)).expect("embree builds")
+    }
+
+    fn down(o: Vec3) -> Ray {
+        Ray::new(o, Vec3::NEG_Z)
+    }
+
+    #[test]
+    fn padded_rayhit_keeps_neighbour_intact() {
+        let accel = build(scene_of(
+            vec![quad()],
+            vec![Instance::new(0, Mat4::IDENTITY)],
+            vec![Material::default()],
+        ));
+        let ray = down(Vec3::new(0.7, 0.2, 1.0));
+        let mut pair = [RayHit::new(&ray, 0), RayHit::new(&ray, 1)];
+        pair[1]._pad = [0xDEAD_BEEF; 4];
+        let bytes = |r: &RayHit| {
+            // SAFETY: RayHit is plain old data with no padding holes of its own (96 bytes of f32/u32).
+            unsafe { std::slice::from_raw_parts((r as *const RayHit).cast::<u8>(), 96) }.to_vec()
+        };
+        let before = bytes(&pair[1]);
+        accel.intersect1(&mut pair[0]);
+        assert!(pair[0].hit().is_some(), "the triangle is hit");
+        assert_eq!(
+            before,
+            bytes(&pair[1]),
+            "a hit must not write into the next element"
+        );
+    }
+
+    #[test]
+    fn unit_quad_hits_and_segments() {
+        let accel = build(scene_of(
+            vec![quad()],
+            vec![Instance::new(0, Mat4::IDENTITY)],
+            vec![Material::default()],
+        ));
+        assert_eq!(accel.name(), "embree");
+        // Above triangle 0 (below the diagonal y = x): u weights vertex 1, v vertex 2.
+        let h = accel.intersect(&down(Vec3::new(0.7, 0.2, 2.0))).unwrap();
+        assert_eq!((h.inst, h.prim), (0, 0));
+        assert!((h.t - 2.0).abs() < 1e-6);
+        // p = (0.7, 0.2) = u (1,0) + v (1,1) -> v = 0.2, u = 0.5.
+        assert!(
+            (h.u - 0.5).abs() < 1e-5 && (h.v - 0.2).abs() < 1e-5,
+            "{h:?}"
+        );
+        let h = accel.intersect(&down(Vec3::new(0.2, 0.7, 2.0))).unwrap();
+        assert_eq!(h.prim, 1);
+        // Misses.
+        assert!(accel.intersect(&down(Vec3::new(1.5, 0.5, 2.0))).is_none());
+        assert!(accel
+            .intersect(&Ray::new(Vec3::new(0.5, 0.5, 2.0), Vec3::Z))
+            .is_none());
+        // Segments.
+        let o = Vec3::new(0.5, 0.25, 2.0);
+        assert!(accel.occluded(&Ray::segment(o, Vec3::NEG_Z, 3.0)));
+        assert!(!accel.occluded(&Ray::segment(o, Vec3::NEG_Z, 1.5)));
+        assert!(accel
+            .intersect(&Ray::segment(o, Vec3::NEG_Z, 1.5))
+            .is_none());
+        let beyond = Ray {
+            t_min: 2.5,
+            ..down(o)
+        };
+        assert!(accel.intersect(&beyond).is_none());
+        assert!(!accel.occluded(&beyond));
+        // An unnormalised direction: t is in units of |d|.
+        let h = accel
+            .intersect(&Ray::new(o, Vec3::new(0.0, 0.0, -4.0)))
+            .unwrap();
+        assert!((h.t - 0.5).abs() < 1e-6);
+    }
+
+    #[test]
+    fn empty_scene_never_hits() {
+        let accel = build(Scene::default());
+        assert!(accel.intersect(&down(Vec3::Z)).is_none());
+        assert!(!accel.occluded(&down(Vec3::Z)));
+    }
+
+    #[test]
+    fn instances_report_their_index() {
+        // Mesh 0 used three times (instanced, one scaled), mesh 1 once (flattened into the top scene).
+        let accel = build(scene_of(
+            vec![quad(), quad()],
+            vec![
+                Instance::new(1, Mat4::from_translation(Vec3::new(0.0, 0.0, -5.0))),
+                Instance::new(0, Mat4::from_translation(Vec3::new(10.0, 0.0, 0.0))),
+                Instance::new(0, Mat4::from_translation(Vec3::new(20.0, 0.0, -1.0))),
+                Instance::new(
+                    0,
+                    Mat4::from_translation(Vec3::new(30.0, 0.0, 0.0))
+                        * Mat4::from_scale(Vec3::splat(4.0)),
+                ),
+            ],
+            vec![Material::default()],
+        ));
+        let h = accel.intersect(&down(Vec3::new(0.2, 0.7, 1.0))).unwrap();
+        assert_eq!((h.inst, h.prim), (0, 1));
+        assert!((h.t - 6.0).abs() < 1e-5);
+        let h = accel.intersect(&down(Vec3::new(10.7, 0.2, 1.0))).unwrap();
+        assert_eq!((h.inst, h.prim), (1, 0));
+        assert!((h.t - 1.0).abs() < 1e-5);
+        assert!((h.u - 0.5).abs() < 1e-5 && (h.v - 0.2).abs() < 1e-5);
+        let h = accel.intersect(&down(Vec3::new(20.2, 0.7, 1.0))).unwrap();
+        assert_eq!((h.inst, h.prim), (2, 1));
+        assert!((h.t - 2.0).abs() < 1e-5);
+        // Scaled by 4: (33, 1) is (0.75, 0.25) in object space, triangle 0; t stays in world units.
+        let h = accel.intersect(&down(Vec3::new(33.0, 1.0, 3.0))).unwrap();
+        assert_eq!((h.inst, h.prim), (3, 0));
+        assert!((h.t - 3.0).abs() < 1e-5);
+        assert!(
+            (h.u - 0.5).abs() < 1e-5 && (h.v - 0.25).abs() < 1e-5,
+            "{h:?}"
+        );
+        assert!(accel.intersect(&down(Vec3::new(5.0, 0.5, 1.0))).is_none());
+        assert!(accel.occluded(&Ray::segment(Vec3::new(33.0, 1.0, 3.0), Vec3::NEG_Z, 3.5)));
+        assert!(!accel.occluded(&Ray::segment(Vec3::new(33.0, 1.0, 3.0), Vec3::NEG_Z, 2.5)));
+    }
+
+    #[test]
+    fn alpha_mask_cuts_out() {
+        for (alpha, visible) in [(0.2, false), (0.8, true)] {
+            let mat = Material {
+                alpha_mode: AlphaMode::Mask(0.5),
+                base_color: Vec4::new(1.0, 1.0, 1.0, alpha),
+                ..Default::default()
+            };
+            assert!(mat.needs_alpha_test());
+            // The masked quad in front, used both flattened (inst 0) and instanced (insts 1, 2).
+            let mut masked = quad();
+            masked.material = 1;
+            let accel = build(scene_of(
+                vec![quad(), masked.clone(), masked],
+                vec![
+                    Instance::new(1, Mat4::IDENTITY),
+                    Instance::new(2, Mat4::from_translation(Vec3::new(10.0, 0.0, 0.0))),
+                    Instance::new(2, Mat4::from_translation(Vec3::new(20.0, 0.0, 0.0))),
+                    Instance::new(0, Mat4::from_translation(Vec3::new(0.0, 0.0, -1.0))),
+                ],
+                vec![Material::default(), mat],
+            ));
+            let h = accel.intersect(&down(Vec3::new(0.5, 0.25, 1.0))).unwrap();
+            assert_eq!(h.inst, if visible { 0 } else { 3 }, "alpha {alpha}");
+            for x in [10.5, 20.5] {
+                let ray = down(Vec3::new(x, 0.25, 1.0));
+                assert_eq!(accel.intersect(&ray).is_some(), visible, "alpha {alpha}");
+                assert_eq!(accel.occluded(&ray), visible, "alpha {alpha}");
+            }
+            let shadow = Ray::segment(Vec3::new(0.5, 0.25, 1.0), Vec3::NEG_Z, 1.5);
+            assert_eq!(accel.occluded(&shadow), visible, "alpha {alpha}");
+            // The batch path publishes all rays at once and finds them by ray id.
+            let rays = [down(Vec3::new(10.5, 0.25, 1.0)), shadow];
+            let mut hits = [None; 2];
+            let mut occ = [false; 2];
+            accel.intersect_batch(&rays, &mut hits);
+            accel.occluded_batch(&rays, &mut occ);
+            assert_eq!(hits.map(|h| h.is_some()), [visible; 2]);
+            assert_eq!(occ, [visible; 2]);
+        }
+    }
+
+    /// Blending is stochastic per ray: filtered instanced hits must hash the world ray, as the BVH does.
+    #[test]
+    fn alpha_blend_matches_scene_decision() {
+        let mat = Material {
+            alpha_mode: AlphaMode::Blend,
+            base_color: Vec4::new(1.0, 1.0, 1.0, 0.5),
+            ..Default::default()
+        };
+        let s = Arc::new(scene_of(
+            vec![quad()],
+            vec![
+                Instance::new(0, Mat4::from_translation(Vec3::new(0.0, 0.0, 0.0))),
+                Instance::new(0, Mat4::from_translation(Vec3::new(2.0, 0.0, 0.0))),
+            ],
+            vec![mat],
+        ));
+        let accel = EmbreeAccel::build(Arc::clone(&s)).unwrap();
+        let mut passes = 0;
+        for i in 0..200 {
+            let x = 2.0 + (i as f32 + 0.5) / 200.0;
+            let ray = down(Vec3::new(x, 0.9 * x.fract(), 1.0));
+            let expected = s.alpha_passes(1, 0, 0.0, 0.0, &ray);
+            let h = accel.intersect(&ray);
+            assert_eq!(h.is_some(), expected, "ray {i}");
+            if let Some(h) = h {
+                assert!(s.alpha_passes(h.inst, h.prim, h.u, h.v, &ray));
+                passes += 1;
+            }
+            assert_eq!(accel.occluded(&ray), expected, "ray {i}");
+        }
+        assert!(passes > 50 && passes < 150, "{passes} of 200 pass");
+        // Batches find each ray's world ray by ray id, also inside instances.
+        let rays: Vec<Ray> = (0..200)
+            .map(|i| {
+                let x = 2.0 + (i as f32 + 0.5) / 200.0;
+                down(Vec3::new(x, 0.9 * x.fract(), 1.0))
+            })
+            .collect();
+        let mut hits = vec![None; rays.len()];
+        let mut occ = vec![false; rays.len()];
+        accel.intersect_batch(&rays, &mut hits);
+        accel.occluded_batch(&rays, &mut occ);
+        for (i, ray) in rays.iter().enumerate() {
+            assert_eq!(hits[i], accel.intersect(ray), "ray {i}");
+            assert_eq!(occ[i], accel.occluded(ray), "ray {i}");
+        }
+    }
+
+    #[test]
+    fn rayon_matches_serial() {
+        // A small field of quads, flattened and instanced, some rotated.
+        let mut instances = vec![Instance::new(1, Mat4::IDENTITY)];
+        for k in 0..20 {
+            let f = k as f32;
+            instances.push(Instance::new(
+                0,
+                Mat4::from_translation(Vec3::new(f * 0.3 - 3.0, f.sin(), f.cos()))
+                    * Mat4::from_rotation_y(f * 0.7)
+                    * Mat4::from_scale(Vec3::splat(1.0 + 0.1 * f)),
+            ));
+        }
+        let accel = build(scene_of(
+            vec![quad(), quad()],
+            instances,
+            vec![Material::default()],
+        ));
+        let mut state = 0x1234_5678_9ABC_DEF0u64;
+        let mut rnd = move || {
+            // splitmix64
+            state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+            let mut z = state;
+            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+            ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
+        };
+        let rays: Vec<Ray> = (0..10_000)
+            .map(|_| {
+                let o = Vec3::new(rnd() * 4.0, rnd() * 4.0, rnd() * 4.0);
+                let target = Vec3::new(rnd() * 3.0, rnd(), rnd());
+                Ray::segment(o, target - o, 1.0 + rnd().abs())
+            })
+            .collect();
+        let serial: Vec<_> = rays
+            .iter()
+            .map(|r| (accel.intersect(r), accel.occluded(r)))
+            .collect();
+        let parallel: Vec<_> = rays
+            .par_iter()
+            .map(|r| (accel.intersect(r), accel.occluded(r)))
+            .collect();
+        let bits = |v: &[(Option<Hit>, bool)]| -> Vec<_> {
+            v.iter()
+                .map(|(h, o)| {
+                    (
+                        h.map(|h| (h.t.to_bits(), h.u.to_bits(), h.v.to_bits(), h.inst, h.prim)),
+                        *o,
+                    )
+                })
+                .collect()
+        };
+        assert_eq!(bits(&serial), bits(&parallel));
+        let hits = serial.iter().filter(|(h, _)| h.is_some()).count();
+        assert!(hits > 100, "only {hits} hits: the test would prove little");
+        // Any hit implies occlusion and vice versa.
+        assert!(serial.iter().all(|(h, o)| h.is_some() == *o));
+        let mut batch = vec![None; rays.len()];
+        accel.intersect_batch(&rays, &mut batch);
+        assert_eq!(
+            bits(&batch.iter().map(|h| (*h, h.is_some())).collect::<Vec<_>>()),
+            bits(&serial)
+        );
     }
 }
