@@ -3,13 +3,16 @@
 
 use glam::Vec3;
 
-/// A ray segment `o + t d` for `t` in `[t_min, t_max)`.
+/// A ray segment `o + t d` for `t` in `(t_min, t_max)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray {
     pub o: Vec3,
     pub d: Vec3,
     pub t_min: f32,
     pub t_max: f32,
+    /// Random bits drawn from the sampler for the stochastic decisions made during traversal
+    /// (alpha blending), so that every backend makes the same ones for the same path.
+    pub seed: u32,
 }
 
 impl Ray {
@@ -19,6 +22,7 @@ impl Ray {
             d,
             t_min: 0.0,
             t_max: f32::INFINITY,
+            seed: 0,
         }
     }
 
@@ -28,7 +32,12 @@ impl Ray {
             d,
             t_min: 0.0,
             t_max,
+            seed: 0,
         }
+    }
+
+    pub fn with_seed(self, seed: u32) -> Self {
+        Self { seed, ..self }
     }
 
     pub fn at(&self, t: f32) -> Vec3 {

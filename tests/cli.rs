@@ -65,7 +65,15 @@ fn info_prints_the_counts() {
     let o = glint(&["info", &demo()]);
     assert!(o.status.success(), "{}", stderr(&o));
     let text = String::from_utf8_lossy(&o.stdout);
-    for key in ["nodes", "meshes", "triangles", "materials", "lights", "cameras", "animations"] {
+    for key in [
+        "nodes",
+        "meshes",
+        "triangles",
+        "materials",
+        "lights",
+        "cameras",
+        "animations",
+    ] {
         assert!(text.contains(key), "{key} missing from:\n{text}");
     }
     assert!(text.contains("lights      2"), "{text}");
@@ -81,10 +89,19 @@ fn bad_invocations_fail_with_a_message_and_leave_no_file() {
     let demo = demo();
     let demo = demo.as_str();
     let cases: Vec<(Vec<&str>, &str)> = vec![
-        (vec!["render", missing.to_str().unwrap(), "-o", out], "nope.glb"),
+        (
+            vec!["render", missing.to_str().unwrap(), "-o", out],
+            "nope.glb",
+        ),
         (vec!["render", demo, "-o", "x.bmp"], "x.bmp"),
-        (vec!["render", demo, "-o", out, "--width", "0"], "out of range"),
-        (vec!["render", demo, "-o", out, "--camera", "7"], "no camera"),
+        (
+            vec!["render", demo, "-o", out, "--width", "0"],
+            "out of range",
+        ),
+        (
+            vec!["render", demo, "-o", out, "--camera", "7"],
+            "no camera",
+        ),
         (vec!["render", demo, "-o", out, "--backend", "gpu"], "gpu"),
         (vec!["render", demo, "-o", out, "--eye", "1,2"], "x,y,z"),
         (vec!["info", missing.to_str().unwrap()], "nope.glb"),

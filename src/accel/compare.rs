@@ -7,7 +7,7 @@ use rayon::prelude::*;
 use super::Accel;
 use crate::geometry::{Hit, Ray};
 use crate::sample::mix64;
-use crate::scene::Scene;
+use crate::scene::{AlphaMode, Scene};
 
 /// Relative distance tolerance under which two hits count as the same.
 pub const T_TOLERANCE: f32 = 1e-4;
@@ -73,14 +73,78 @@ pub struct Agreement {
     pub same: usize,
     /// Different primitives at the same distance (a ray through a shared edge or coincident faces).
     pub ties: usize,
+    /// Disagreements where a hit grazes its triangle (the ray within `GRAZING_COS` of parallel to it):
+    /// there t, u, v are ill-conditioned and no two float implementations agree.
+    pub grazing: usize,
+    /// Disagreements where one backend's nearer hit lies within `EDGE_BARYCENTRIC` of its triangle's
+    /// edge and the other passed by: a silhouette edge, where instanced (object-space, Embree) and
+    /// flattened (world-space, BVH) vertices round differently.
+    pub edges: usize,
+    /// Disagreements where the nearer hit's alpha is within `ALPHA_MARGIN` of its material's cutoff:
+    /// the backends' barycentrics differ in the last bits, and so may the texture lookup.
+    pub alpha_edges: usize,
     /// Everything else, with the ray and both answers (at most `MAX_KEPT` kept).
     pub mismatches: Vec<(Ray, Option<Hit>, Option<Hit>)>,
     pub mismatch_count: usize,
-    /// Disagreements of `occluded` with `intersect(..).is_some()` across the two backends.
+    /// Rays whose closest hits agree but whose `occluded` answers do not match them.
     pub occlusion_mismatches: usize,
 }
 
 const MAX_KEPT: usize = 16;
+
+/// |cos| between ray and triangle plane below which a hit counts as grazing (about 0.6 degrees).
+pub const GRAZING_COS: f32 = 0.01;
+
+/// Barycentric distance from an edge under which a hit counts as on the edge.
+pub const EDGE_BARYCENTRIC: f32 = 1e-3;
+/// Distance from an edge, relative to the scene's size, under which a hit counts as on the edge
+/// (for slivers, whose barycentrics say little).
+pub const EDGE_RELATIVE: f32 = 1e-5;
+
+/// Alpha distance from a mask cutoff under which a cutout decision counts as on the edge.
+pub const ALPHA_MARGIN: f32 = 0.02;
+
+fn on_alpha_edge(scene: &Scene, hit: &Option<Hit>) -> bool {
+    hit.is_some_and(|h| {
+        let mesh = scene.mesh_of(h.inst);
+        let mat = &scene.materials[mesh.material as usize];
+        match mat.alpha_mode {
+            AlphaMode::Mask(cutoff) if mat.needs_alpha_test() => {
+                let alpha = scene.base_color(mat, mesh.uv_at(h.prim, h.u, h.v)).w;
+                (alpha - cutoff).abs() < ALPHA_MARGIN
+            }
+            _ => false,
+        }
+    })
+}
+
+/// World-space distance from a hit to the nearest edge of its triangle.
+fn edge_distance(scene: &Scene, h: &Hit) -> f32 {
+    let inst = &scene.instances[h.inst as usize];
+    let [a, b, c] = scene
+        .mesh_of(h.inst)
+        .triangle(h.prim)
+        .map(|p| inst.to_world.transform_point3(p));
+    let twice_area = (b - a).cross(c - a).length();
+    // Barycentric weight of a vertex times the height over the opposite edge.
+    let (wa, wb, wc) = (1.0 - h.u - h.v, h.u, h.v);
+    let height = |e: glam::Vec3| twice_area / e.length().max(f32::MIN_POSITIVE);
+    (wa * height(c - b))
+        .min(wb * height(a - c))
+        .min(wc * height(b - a))
+}
+
+fn on_edge(scene: &Scene, hit: &Option<Hit>) -> bool {
+    let size = scene.bounds().extent().length();
+    hit.is_some_and(|h| {
+        h.u.min(h.v).min(1.0 - h.u - h.v) < EDGE_BARYCENTRIC
+            || edge_distance(scene, &h) < EDGE_RELATIVE * size
+    })
+}
+
+fn grazes(scene: &Scene, ray: &Ray, hit: &Option<Hit>) -> bool {
+    hit.is_some_and(|h| incidence(scene, ray, &h) < GRAZING_COS)
+}
 
 impl Agreement {
     pub fn fraction_same(&self) -> f64 {
@@ -89,16 +153,72 @@ impl Agreement {
 }
 
 /// Whether two hit distances along `ray` agree: within `T_TOLERANCE` relative, or within the rounding
-/// error of the hit point itself (a few ulps of the largest coordinate involved), which is what bounds
-/// the agreement of tiny distances from origins far from zero.
-fn close(ray: &Ray, a: f32, b: f32) -> bool {
-    let t = a.abs().max(b.abs());
-    let magnitude = ray.o.abs().max_element() + t * ray.d.abs().max_element();
-    (a - b).abs() <= T_TOLERANCE * t + 16.0 * f32::EPSILON * magnitude
+/// error of the hit point (64 ulps of the largest coordinate involved, in world space or, for
+/// Embree's instanced meshes, in object space scaled to world units), divided by the cosine of
+/// incidence, since a point error of e moves a hit by e / cos along the ray.
+fn close(scene: &Scene, magnitudes: &[f32], ray: &Ray, x: &Hit, y: &Hit) -> bool {
+    let t = x.t.abs().max(y.t.abs());
+    let diff = (x.t - y.t).abs();
+    let world = ray.o.abs().max_element() + t * ray.d.abs().max_element();
+    if diff <= T_TOLERANCE * t + 64.0 * f32::EPSILON * world {
+        return true;
+    }
+    let magnitude = world
+        .max(magnitudes[x.inst as usize])
+        .max(magnitudes[y.inst as usize]);
+    let cos = incidence(scene, ray, x)
+        .min(incidence(scene, ray, y))
+        .max(GRAZING_COS);
+    diff <= T_TOLERANCE * t + 64.0 * f32::EPSILON * magnitude / cos
 }
 
-/// Compares closest hits and occlusion answers of `a` and `b` for every ray.
-pub fn compare(a: &dyn Accel, b: &dyn Accel, rays: &[Ray]) -> Agreement {
+/// Per instance: the largest object-space coordinate of its mesh, in world units.
+fn object_magnitudes(scene: &Scene) -> Vec<f32> {
+    let per_mesh: Vec<f32> = scene
+        .meshes
+        .iter()
+        .map(|m| {
+            let b = m.bounds();
+            b.min.abs().max(b.max.abs()).max_element()
+        })
+        .collect();
+    scene
+        .instances
+        .iter()
+        .map(|inst| {
+            let m = glam::Mat3::from_mat4(inst.to_world);
+            let scale = m
+                .x_axis
+                .length()
+                .max(m.y_axis.length())
+                .max(m.z_axis.length());
+            per_mesh[inst.mesh as usize] * scale
+        })
+        .collect()
+}
+
+/// |cos| of the angle between the ray and the hit triangle's normal.
+fn incidence(scene: &Scene, ray: &Ray, h: &Hit) -> f32 {
+    let inst = &scene.instances[h.inst as usize];
+    let [a, b, c] = scene
+        .mesh_of(h.inst)
+        .triangle(h.prim)
+        .map(|p| inst.to_world.transform_point3(p));
+    let n = (b - a).cross(c - a).normalize_or_zero();
+    n.dot(ray.d.normalize()).abs()
+}
+
+fn nearer(a: Option<Hit>, b: Option<Hit>) -> Option<Hit> {
+    match (a, b) {
+        (Some(x), Some(y)) => Some(if x.t <= y.t { x } else { y }),
+        (x, y) => x.or(y),
+    }
+}
+
+/// Compares closest hits and occlusion answers of `a` and `b` (both built over `scene`) for every ray.
+pub fn compare(scene: &Scene, a: &dyn Accel, b: &dyn Accel, rays: &[Ray]) -> Agreement {
+    let magnitudes = object_magnitudes(scene);
+    let close = |ray: &Ray, x: &Hit, y: &Hit| close(scene, &magnitudes, ray, x, y);
     rays.par_chunks(4096)
         .map(|chunk| {
             let mut g = Agreement::default();
@@ -108,13 +228,16 @@ pub fn compare(a: &dyn Accel, b: &dyn Accel, rays: &[Ray]) -> Agreement {
                 g.hits += ha.is_some() as usize;
                 match (ha, hb) {
                     (None, None) => g.same += 1,
-                    (Some(x), Some(y)) if close(ray, x.t, y.t) => {
+                    (Some(x), Some(y)) if close(ray, &x, &y) => {
                         if (x.inst, x.prim) == (y.inst, y.prim) {
                             g.same += 1
                         } else {
                             g.ties += 1
                         }
                     }
+                    _ if grazes(scene, ray, &ha) || grazes(scene, ray, &hb) => g.grazing += 1,
+                    _ if on_edge(scene, &nearer(ha, hb)) => g.edges += 1,
+                    _ if on_alpha_edge(scene, &nearer(ha, hb)) => g.alpha_edges += 1,
                     _ => {
                         g.mismatch_count += 1;
                         if g.mismatches.len() < MAX_KEPT {
@@ -122,7 +245,10 @@ pub fn compare(a: &dyn Accel, b: &dyn Accel, rays: &[Ray]) -> Agreement {
                         }
                     }
                 }
-                if a.occluded(ray) != hb.is_some() || b.occluded(ray) != ha.is_some() {
+                // Where the closest hits agree, any-hit queries must give the same answer too.
+                let agreed = ha.is_some() == hb.is_some()
+                    && (ha.is_none() || close(ray, &ha.unwrap(), &hb.unwrap()));
+                if agreed && (a.occluded(ray) != ha.is_some() || b.occluded(ray) != hb.is_some()) {
                     g.occlusion_mismatches += 1;
                 }
             }
@@ -133,6 +259,9 @@ pub fn compare(a: &dyn Accel, b: &dyn Accel, rays: &[Ray]) -> Agreement {
             x.hits += y.hits;
             x.same += y.same;
             x.ties += y.ties;
+            x.grazing += y.grazing;
+            x.edges += y.edges;
+            x.alpha_edges += y.alpha_edges;
             x.mismatch_count += y.mismatch_count;
             x.occlusion_mismatches += y.occlusion_mismatches;
             x.mismatches.extend(y.mismatches);

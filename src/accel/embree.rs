@@ -166,6 +166,7 @@ unsafe extern "C" fn alpha_filter(args: *const sys::RTCFilterFunctionNArguments)
                     d: glam::Vec3::new(f(4), f(5), f(6)),
                     t_min: f(3),
                     t_max: f(8),
+                    seed: 0,
                 }
             };
             if !scene.alpha_passes(inst, prim, u, v, &world) {

@@ -51,7 +51,7 @@ impl<'a> Integrator<'a> {
     }
 
     pub fn li(&self, camera_ray: Ray, sampler: &mut dyn Sampler) -> PathResult {
-        let mut ray = camera_ray;
+        let mut ray = camera_ray.with_seed(sampler.get_seed(0));
         let mut l = Vec3::ZERO;
         let mut beta = Vec3::ONE;
         let mut alpha = 1.0;
@@ -85,6 +85,7 @@ impl<'a> Integrator<'a> {
                 break;
             }
             let wo = -ray.d;
+            let seed = sampler.get_seed(bounce + 1);
             let origin = offset_ray_origin(si.p, si.ng);
             let n = si.bsdf.frame.n;
 
@@ -102,7 +103,8 @@ impl<'a> Integrator<'a> {
                             f32::INFINITY
                         };
                         rays += 1;
-                        if !self.accel.occluded(&Ray::segment(origin, ls.wi, t_max)) {
+                        let shadow = Ray::segment(origin, ls.wi, t_max).with_seed(seed);
+                        if !self.accel.occluded(&shadow) {
                             let w = if ls.is_delta {
                                 1.0
                             } else {
@@ -127,7 +129,7 @@ impl<'a> Integrator<'a> {
             }
             beta *= s.f * (s.wi.dot(n).abs() / s.pdf);
             prev = Some((s.pdf, si.p));
-            ray = Ray::new(origin, s.wi);
+            ray = Ray::new(origin, s.wi).with_seed(seed);
 
             if bounce + 1 >= ROULETTE_START {
                 let q = beta.max_element().min(0.95);

@@ -24,6 +24,8 @@ pub enum Dim {
     Bsdf,
     /// Russian roulette (1D).
     Roulette,
+    /// Seed for stochastic transparency of the rays leaving this bounce (1D, used as 32 bits).
+    Alpha,
 }
 
 impl Dim {
@@ -43,6 +45,7 @@ impl Dim {
                     Dim::BsdfLobe => 3,
                     Dim::Bsdf => 4,
                     Dim::Roulette => 6,
+                    Dim::Alpha => 7,
                     _ => unreachable!(),
                 };
                 Self::CAMERA_DIMS + bounce * Self::BOUNCE_DIMS + k
@@ -57,6 +60,11 @@ pub trait Sampler {
     fn start(&mut self, x: u32, y: u32, index: u32);
     fn get_1d(&mut self, dim: Dim, bounce: u32) -> f32;
     fn get_2d(&mut self, dim: Dim, bounce: u32) -> Vec2;
+
+    /// 32 random bits for a ray seed (see `Ray::seed`).
+    fn get_seed(&mut self, bounce: u32) -> u32 {
+        (self.get_1d(Dim::Alpha, bounce) * 4_294_967_296.0) as u32
+    }
 }
 
 /// Independent uniform samples, from a hash of (seed, pixel, sample, dimension).
@@ -119,6 +127,7 @@ mod tests {
                 (Dim::BsdfLobe, 1),
                 (Dim::Bsdf, 2),
                 (Dim::Roulette, 1),
+                (Dim::Alpha, 1),
             ] {
                 for k in 0..width {
                     assert!(seen.insert(d.index(bounce) + k), "{d:?} at bounce {bounce}");

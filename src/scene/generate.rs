@@ -119,6 +119,9 @@ mod tests {
             }
         }
         assert!(edges.values().all(|&n| n == 2));
-        assert_eq!(m.positions.len() as i64 - edges.len() as i64 + m.indices.len() as i64, 2);
+        assert_eq!(
+            m.positions.len() as i64 - edges.len() as i64 + m.indices.len() as i64,
+            2
+        );
     }
 }

@@ -365,22 +365,8 @@ impl Scene {
     }
 }
 
-/// A uniform number in [0, 1) from the ray and the triangle, so that stochastic transparency is the same
-/// in every backend and every run.
+/// A uniform number in [0, 1) from the ray's seed and the triangle: the same in every backend and run.
 fn blend_hash(ray: &Ray, inst: u32, prim: u32) -> f32 {
-    let mut h: u64 = 0x9E37_79B9_7F4A_7C15;
-    for w in [
-        ray.o.x.to_bits(),
-        ray.o.y.to_bits(),
-        ray.o.z.to_bits(),
-        ray.d.x.to_bits(),
-        ray.d.y.to_bits(),
-        ray.d.z.to_bits(),
-        inst,
-        prim,
-    ] {
-        h = (h ^ w as u64).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        h ^= h >> 31;
-    }
-    (h >> 40) as f32 / (1u64 << 24) as f32
+    let key = (ray.seed as u64) << 32 ^ (inst as u64) << 24 ^ prim as u64;
+    (crate::sample::mix64(key ^ 0x9E37_79B9_7F4A_7C15) >> 40) as f32 / (1u64 << 24) as f32
 }
