@@ -723,7 +723,7 @@ mod tests {
         }
     }
 
-    /// Blending is stochastic per ray: filtered instanced hits must hash the world ray, as the BVH does.
+    /// Blending is stochastic per ray seed: filtered instanced hits must see the world ray's seed.
     #[test]
     fn alpha_blend_matches_scene_decision() {
         let mat = Material {
@@ -743,7 +743,7 @@ mod tests {
         let mut passes = 0;
         for i in 0..200 {
             let x = 2.0 + (i as f32 + 0.5) / 200.0;
-            let ray = down(Vec3::new(x, 0.9 * x.fract(), 1.0));
+            let ray = down(Vec3::new(x, 0.9 * x.fract(), 1.0)).with_seed(i * 7919);
             let expected = s.alpha_passes(1, 0, 0.0, 0.0, &ray);
             let h = accel.intersect(&ray);
             assert_eq!(h.is_some(), expected, "ray {i}");
@@ -758,7 +758,7 @@ mod tests {
         let rays: Vec<Ray> = (0..200)
             .map(|i| {
                 let x = 2.0 + (i as f32 + 0.5) / 200.0;
-                down(Vec3::new(x, 0.9 * x.fract(), 1.0))
+                down(Vec3::new(x, 0.9 * x.fract(), 1.0)).with_seed(i * 7919)
             })
             .collect();
         let mut hits = vec![None; rays.len()];
