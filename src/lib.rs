@@ -2,6 +2,7 @@
 //! Data flows one way: file -> `scene` -> `accel` -> `render` -> `film` -> file.
 
 pub mod accel;
+pub mod bench;
 pub mod cli;
 pub mod film;
 pub mod geometry;

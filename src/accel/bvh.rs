@@ -113,7 +113,7 @@ impl Bvh {
     }
 
     /// Bytes held by the structure (nodes, triangles, ids).
-    pub fn memory_bytes(&self) -> usize {
+    fn bytes(&self) -> usize {
         self.nodes.len() * std::mem::size_of::<Node>()
             + self.tris.len() * std::mem::size_of::<[Vec3; 3]>()
             + self.ids.len() * std::mem::size_of::<TriId>()
@@ -419,6 +419,10 @@ impl Accel for Bvh {
 
     fn occluded(&self, ray: &Ray) -> bool {
         self.traverse(ray, true).is_some()
+    }
+
+    fn memory_bytes(&self) -> usize {
+        self.bytes()
     }
 }
 

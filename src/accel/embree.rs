@@ -10,6 +10,7 @@ use std::cell::Cell;
 use std::ffi::{c_char, c_void, CStr};
 use std::mem::size_of;
 use std::ptr;
+use std::sync::atomic::{AtomicIsize, Ordering};
 use std::sync::{Arc, Mutex};
 
 use embree4_sys as sys;
@@ -197,6 +198,15 @@ unsafe extern "C" fn on_error(user: *mut c_void, code: sys::RTCError, msg: *cons
     }
 }
 
+/// Embree's memory monitor: keeps a running total of the bytes the device has allocated.
+unsafe extern "C" fn on_memory(user: *mut c_void, bytes: isize, _post: bool) -> bool {
+    // SAFETY: `user` is the `AtomicIsize` boxed in the `EmbreeAccel` that owns the device, which
+    // outlives every allocation callback of that device.
+    let total = unsafe { &*(user as *const AtomicIsize) };
+    total.fetch_add(bytes, Ordering::Relaxed);
+    true
+}
+
 /// Intel Embree 4 over the scene's instances.
 pub struct EmbreeAccel {
     device: sys::RTCDevice,
@@ -208,6 +218,8 @@ pub struct EmbreeAccel {
     filtered: bool,
     /// Messages from Embree's error callback; boxed so the pointer given to Embree stays put.
     errors: Box<Mutex<Vec<String>>>,
+    /// Bytes the device holds, from its memory monitor; boxed for the same reason.
+    memory: Box<AtomicIsize>,
     /// The scene the hits refer to; also the user data of filtered geometries, so it must outlive them.
     scene: Arc<Scene>,
 }
@@ -238,12 +250,16 @@ impl EmbreeAccel {
             children: Vec::new(),
             filtered: false,
             errors: Box::new(Mutex::new(Vec::new())),
+            memory: Box::new(AtomicIsize::new(0)),
             scene,
         };
         let sink = &*accel.errors as *const Mutex<Vec<String>> as *mut c_void;
         // SAFETY: `device` is live; `sink` points into a Box owned by `accel`, which releases the
         // device in `Drop` before the Box is freed.
         unsafe { sys::rtcSetDeviceErrorFunction(device, Some(on_error), sink) };
+        let memory = &*accel.memory as *const AtomicIsize as *mut c_void;
+        // SAFETY: as for the error sink: the Box outlives the device that calls back into it.
+        unsafe { sys::rtcSetDeviceMemoryMonitorFunction(device, Some(on_memory), memory) };
         accel.check("creating the device")?;
         accel.populate()?;
         Ok(accel)
@@ -521,6 +537,10 @@ impl Accel for EmbreeAccel {
         self.query(std::slice::from_ref(ray), || self.occluded1(&mut r));
         // Embree marks an occluded ray by setting tfar to -inf.
         r.tfar == f32::NEG_INFINITY
+    }
+
+    fn memory_bytes(&self) -> usize {
+        self.memory.load(Ordering::Relaxed).max(0) as usize
     }
 }
 

@@ -23,6 +23,10 @@ pub trait Accel: Send + Sync {
     fn name(&self) -> &'static str;
     fn intersect(&self, ray: &Ray) -> Option<Hit>;
     fn occluded(&self, ray: &Ray) -> bool;
+    /// Bytes held by the structure (for benchmarks).
+    fn memory_bytes(&self) -> usize {
+        0
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -1,6 +1,8 @@
 //! The command line: clap definitions and the `render` and `info` subcommands.
 //! Nothing else in glint knows about flags; errors travel up as `anyhow` chains to `main`.
 
+pub mod bench;
+
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -39,6 +41,9 @@ pub enum Command {
         /// A .gltf, .glb or .obj file.
         input: PathBuf,
     },
+    /// Benchmarks: ray throughput per backend (`rays`).
+    #[command(subcommand)]
+    Bench(bench::BenchCommand),
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -116,6 +121,7 @@ pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Render(args) => render_command(args),
         Command::Info { input } => info_command(&input),
+        Command::Bench(cmd) => bench::run(cmd),
     }
 }
 

@@ -1,0 +1,357 @@
+//! `glint bench rays`: the same primary, shadow and diffuse rays traced by every backend, with build
+//! time and memory, throughput per thread count and agreement with Embree.
+
+use std::fmt::{self, Write as _};
+use std::path::Path;
+use std::sync::Arc;
+use std::time::Instant;
+
+use anyhow::{bail, Context, Result};
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+
+use crate::accel::{self, compare, Accel, Backend};
+use crate::geometry::Ray;
+use crate::render::bsdf::{cosine_hemisphere, Frame};
+use crate::render::light::LightSet;
+use crate::render::offset::offset_ray_origin;
+use crate::render::RayCamera;
+use crate::sample::mix64;
+use crate::scene::{defaults, generate, Scene};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum RayKind {
+    /// Camera rays through pixel centres (coherent).
+    Primary,
+    /// From the first-hit points to a sampled light (any-hit queries).
+    Shadow,
+    /// Cosine-distributed bounces from the first-hit points (incoherent).
+    Diffuse,
+}
+
+impl RayKind {
+    pub const ALL: [RayKind; 3] = [RayKind::Primary, RayKind::Shadow, RayKind::Diffuse];
+}
+
+impl fmt::Display for RayKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            RayKind::Primary => "primary",
+            RayKind::Shadow => "shadow",
+            RayKind::Diffuse => "diffuse",
+        })
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct RaysConfig {
+    pub backends: Vec<Backend>,
+    pub kinds: Vec<RayKind>,
+    pub threads: Vec<usize>,
+    pub width: usize,
+    pub height: usize,
+    pub repeat: usize,
+}
+
+#[derive(Clone, Debug)]
+pub struct KindResult {
+    pub kind: RayKind,
+    pub rays: usize,
+    /// (threads, Mrays/s), best of the repetitions.
+    pub mrays: Vec<(usize, f64)>,
+    /// Fraction of rays answered as Embree answers them (None when Embree is not measured).
+    pub agreement: Option<f64>,
+}
+
+#[derive(Clone, Debug)]
+pub struct BackendResult {
+    pub backend: Backend,
+    pub build_seconds: f64,
+    pub memory_bytes: usize,
+    pub kinds: Vec<KindResult>,
+}
+
+#[derive(Clone, Debug)]
+pub struct Report {
+    pub input: String,
+    pub triangles: usize,
+    pub results: Vec<BackendResult>,
+}
+
+/// Loads a model file, or generates `icosphere:N`.
+pub fn load_input(input: &str) -> Result<Scene> {
+    if let Some(n) = input.strip_prefix("icosphere:") {
+        let n: u32 = n
+            .parse()
+            .with_context(|| format!("'{input}': expected icosphere:N"))?;
+        if n > 10 {
+            bail!("'{input}': at most 10 subdivisions (21M triangles)");
+        }
+        return Ok(generate::single_mesh_scene(generate::icosphere(n, 0.05)));
+    }
+    Ok(Scene::load(Path::new(input))?)
+}
+
+/// The three ray sets of a scene, in a fixed order (generation is not timed).
+pub struct RaySets {
+    pub primary: Vec<Ray>,
+    pub shadow: Vec<Ray>,
+    pub diffuse: Vec<Ray>,
+}
+
+impl RaySets {
+    pub fn get(&self, kind: RayKind) -> &[Ray] {
+        match kind {
+            RayKind::Primary => &self.primary,
+            RayKind::Shadow => &self.shadow,
+            RayKind::Diffuse => &self.diffuse,
+        }
+    }
+}
+
+fn unit(h: u64) -> f32 {
+    (h >> 40) as f32 / (1u64 << 24) as f32
+}
+
+/// Camera rays through pixel centres, then from each first hit (found with `accel`) a shadow ray to a
+/// sampled light and a cosine-distributed diffuse ray.
+pub fn generate_rays(scene: &Scene, accel: &dyn Accel, width: usize, height: usize) -> RaySets {
+    let camera = scene.cameras.first().cloned().unwrap_or_else(|| {
+        defaults::frame_bounds(
+            &scene.bounds(),
+            defaults::default_view_direction(),
+            defaults::DEFAULT_FOV_DEG.to_radians(),
+            width as f32 / height as f32,
+        )
+    });
+    let mut lit = scene.clone();
+    if !defaults::has_own_lights(scene) {
+        lit.lights.extend(defaults::light_rig(&camera.to_world));
+    }
+    let lights = LightSet::new(&lit);
+    let cam = RayCamera::new(&camera, width, height);
+    let primary: Vec<Ray> = (0..width * height)
+        .map(|i| {
+            cam.ray(Vec2::new(
+                (i % width) as f32 + 0.5,
+                (i / width) as f32 + 0.5,
+            ))
+        })
+        .collect();
+    let secondary: Vec<(Option<Ray>, Ray)> = primary
+        .par_iter()
+        .enumerate()
+        .filter_map(|(i, r)| {
+            let h = accel.intersect(r)?;
+            let inst = &scene.instances[h.inst as usize];
+            let [a, b, c] = scene
+                .mesh_of(h.inst)
+                .triangle(h.prim)
+                .map(|p| inst.to_world.transform_point3(p));
+            let mut n = (b - a).cross(c - a).normalize_or_zero();
+            if n == Vec3::ZERO {
+                return None;
+            }
+            if n.dot(r.d) > 0.0 {
+                n = -n;
+            }
+            let p = a * (1.0 - h.u - h.v) + b * h.u + c * h.v;
+            let o = offset_ray_origin(p, n);
+            let u = |k: u64| unit(mix64(i as u64 * 4 + k));
+            let shadow = lights
+                .sample(&lit, p, u(0), Vec2::new(u(1), u(2)))
+                .map(|ls| Ray::segment(o, ls.wi, ls.dist * (1.0 - 1e-3)));
+            let d = Frame::from_normal(n).to_world(cosine_hemisphere(Vec2::new(u(3), u(1))));
+            Some((shadow, Ray::new(o, d)))
+        })
+        .collect();
+    RaySets {
+        shadow: secondary.iter().filter_map(|s| s.0).collect(),
+        diffuse: secondary.iter().map(|s| s.1).collect(),
+        primary,
+    }
+}
+
+/// Traces every ray (closest hit, or any hit for shadow rays) and returns a count so the work is kept.
+fn trace(accel: &dyn Accel, rays: &[Ray], any_hit: bool) -> usize {
+    rays.par_chunks(1024)
+        .map(|c| {
+            c.iter()
+                .filter(|r| {
+                    if any_hit {
+                        accel.occluded(r)
+                    } else {
+                        accel.intersect(r).is_some()
+                    }
+                })
+                .count()
+        })
+        .sum()
+}
+
+pub fn run(input: &str, config: &RaysConfig) -> Result<Report> {
+    if config.threads.iter().any(|&t| t == 0) {
+        bail!("thread counts must be at least 1");
+    }
+    let scene = Arc::new(load_input(input)?);
+    if scene.triangle_count() == 0 {
+        bail!("{input}: no triangles to trace");
+    }
+    // The same rays for every backend, generated with the Rust BVH (always available).
+    let reference = accel::build(scene.clone(), Backend::Bvh)?;
+    let sets = generate_rays(&scene, reference.as_ref(), config.width, config.height);
+    drop(reference);
+    let embree = if config.backends.contains(&Backend::Embree) {
+        Some(accel::build(scene.clone(), Backend::Embree)?)
+    } else {
+        None
+    };
+
+    let mut results = Vec::new();
+    for &backend in &config.backends {
+        let mut build_seconds = f64::INFINITY;
+        let mut built = None;
+        for _ in 0..config.repeat {
+            let t = Instant::now();
+            let a = accel::build(scene.clone(), backend)?;
+            build_seconds = build_seconds.min(t.elapsed().as_secs_f64());
+            built = Some(a);
+        }
+        let accel = built.expect("repeat >= 1");
+        let mut kinds = Vec::new();
+        for &kind in &config.kinds {
+            let rays = sets.get(kind);
+            let any_hit = kind == RayKind::Shadow;
+            let mut mrays = Vec::new();
+            for &threads in &config.threads {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .context("building a thread pool")?;
+                let mut best = f64::INFINITY;
+                for _ in 0..config.repeat {
+                    let t = Instant::now();
+                    std::hint::black_box(pool.install(|| trace(accel.as_ref(), rays, any_hit)));
+                    best = best.min(t.elapsed().as_secs_f64());
+                }
+                mrays.push((threads, rays.len() as f64 / best.max(1e-9) / 1e6));
+            }
+            let agreement = embree
+                .as_ref()
+                .map(|e| agreement(&scene, accel.as_ref(), e.as_ref(), rays, any_hit));
+            kinds.push(KindResult {
+                kind,
+                rays: rays.len(),
+                mrays,
+                agreement,
+            });
+        }
+        results.push(BackendResult {
+            backend,
+            build_seconds,
+            memory_bytes: accel.memory_bytes(),
+            kinds,
+        });
+    }
+    Ok(Report {
+        input: input.to_string(),
+        triangles: scene.triangle_count(),
+        results,
+    })
+}
+
+/// Fraction of rays for which `a` answers as `reference` does (closest hit: same primitive and
+/// distance, or a tie; any hit: the same yes or no).
+fn agreement(
+    scene: &Scene,
+    a: &dyn Accel,
+    reference: &dyn Accel,
+    rays: &[Ray],
+    any_hit: bool,
+) -> f64 {
+    if rays.is_empty() {
+        return 1.0;
+    }
+    if any_hit {
+        let same = rays
+            .par_iter()
+            .filter(|r| a.occluded(r) == reference.occluded(r))
+            .count();
+        same as f64 / rays.len() as f64
+    } else {
+        compare::compare(scene, a, reference, rays).fraction_same()
+    }
+}
+
+impl Report {
+    /// A plain-text table: one row per backend and ray kind.
+    pub fn table(&self) -> String {
+        let mut s = String::new();
+        let _ = writeln!(s, "{}: {} triangles", self.input, self.triangles);
+        let threads: Vec<usize> = self
+            .results
+            .first()
+            .and_then(|r| r.kinds.first())
+            .map(|k| k.mrays.iter().map(|m| m.0).collect())
+            .unwrap_or_default();
+        let _ = write!(
+            s,
+            "{:<8} {:<8} {:>9} {:>9} {:>9}",
+            "backend", "kind", "rays", "build ms", "memory MB"
+        );
+        for t in &threads {
+            let _ = write!(s, " {:>10}", format!("Mrays/s {t}t"));
+        }
+        let _ = writeln!(s, " {:>10}", "vs embree");
+        for r in &self.results {
+            for k in &r.kinds {
+                let _ = write!(
+                    s,
+                    "{:<8} {:<8} {:>9} {:>9.1} {:>9.1}",
+                    r.backend.to_string(),
+                    k.kind.to_string(),
+                    k.rays,
+                    r.build_seconds * 1e3,
+                    r.memory_bytes as f64 / (1 << 20) as f64
+                );
+                for (_, m) in &k.mrays {
+                    let _ = write!(s, " {m:>10.2}");
+                }
+                match k.agreement {
+                    Some(a) => {
+                        let _ = writeln!(s, " {:>9.4}%", a * 100.0);
+                    }
+                    None => {
+                        let _ = writeln!(s, " {:>10}", "-");
+                    }
+                }
+            }
+        }
+        s
+    }
+
+    pub fn to_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "input": self.input,
+            "triangles": self.triangles,
+            "backends": self.results.iter().map(|r| serde_json::json!({
+                "backend": r.backend.to_string(),
+                "build_seconds": r.build_seconds,
+                "memory_bytes": r.memory_bytes,
+                "kinds": r.kinds.iter().map(|k| serde_json::json!({
+                    "kind": k.kind.to_string(),
+                    "rays": k.rays,
+                    "mrays_per_second": k.mrays.iter().map(|(t, m)| serde_json::json!({"threads": t, "mrays": m})).collect::<Vec<_>>(),
+                    "agreement_with_embree": k.agreement,
+                })).collect::<Vec<_>>(),
+            })).collect::<Vec<_>>(),
+        })
+    }
+
+    pub fn write_json(&self, path: &Path) -> Result<()> {
+        let text = serde_json::to_string_pretty(&self.to_json())?;
+        let tmp = path.with_extension("json.tmp");
+        std::fs::write(&tmp, text).with_context(|| format!("writing {}", tmp.display()))?;
+        std::fs::rename(&tmp, path).with_context(|| format!("renaming into {}", path.display()))
+    }
+}
