@@ -1,11 +1,13 @@
-//! The pure-Rust backend: a binary BVH over world-space triangles, built by binned SAH in parallel.
-//! Traversal is ordered front to back with conservative slab tests (Ize 2013) and the watertight triangle test.
+//! The pure-Rust backend: a 4-wide BVH over world-space triangles, built by binned SAH in parallel
+//! and collapsed from the binary tree. Traversal tests four boxes at once (structure-of-arrays nodes
+//! the compiler vectorises), front to back, with conservative slab tests (Ize 2013) and the watertight
+//! triangle test.
 
 use std::sync::Arc;
 
 use glam::Vec3;
 
-use super::triangle::{self, RayShear};
+use super::triangle::{self, RayShear, Tri4};
 use super::Accel;
 use crate::geometry::{Aabb, Hit, Ray};
 use crate::scene::Scene;
@@ -13,7 +15,7 @@ use crate::scene::Scene;
 /// Number of SAH bins per axis.
 const BINS: usize = 16;
 /// Leaves never hold more than this many triangles.
-const MAX_LEAF: usize = 8;
+const MAX_LEAF: usize = 4;
 /// Relative cost of a ray/box test against a ray/triangle test, for the SAH.
 const TRAVERSAL_COST: f32 = 1.0;
 /// Subtrees smaller than this are built on the current thread.
@@ -39,11 +41,25 @@ struct TriId {
     prim: u32,
 }
 
+/// A 4-wide node: the boxes of up to four children side by side (one array per bound), and for each
+/// child either an inner node index (`count == 0`) or a leaf of `count` triangles from `child`.
+/// Unused lanes hold an empty box, which no ray enters. 128 bytes, two cache lines.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+struct Node4 {
+    lo: [[f32; 4]; 3],
+    hi: [[f32; 4]; 3],
+    child: [u32; 4],
+    count: [u32; 4],
+}
+
 pub struct Bvh {
     scene: Arc<Scene>,
-    nodes: Vec<Node>,
-    /// World-space vertices, in leaf order.
-    tris: Vec<[Vec3; 3]>,
+    /// Root at index 0 (absent for an empty scene).
+    nodes: Vec<Node4>,
+    /// World-space triangles in packets of four; a leaf is a run of packets.
+    tris: Vec<Tri4>,
+    /// Identity of each packet lane (`4 * packet + lane`).
     ids: Vec<TriId>,
 }
 
@@ -98,13 +114,25 @@ impl Bvh {
             })
             .collect();
         let tree = build_subtree(refs);
-        let tris = tree.order.iter().map(|&i| tris[i as usize]).collect();
-        let ids = tree.order.iter().map(|&i| ids[i as usize]).collect();
+        let mut out = Collapsed {
+            nodes: Vec::with_capacity(tree.nodes.len() / 2 + 1),
+            packets: Vec::with_capacity(tris.len() / 2 + 1),
+            ids: Vec::with_capacity(tris.len() * 2),
+        };
+        if !tree.order.is_empty() {
+            let source = Source {
+                bin: &tree.nodes,
+                order: &tree.order,
+                tris: &tris,
+                ids: &ids,
+            };
+            collapse(&source, 0, &mut out);
+        }
         Self {
             scene,
-            nodes: tree.nodes,
-            tris,
-            ids,
+            nodes: out.nodes,
+            tris: out.packets,
+            ids: out.ids,
         }
     }
 
@@ -114,15 +142,15 @@ impl Bvh {
 
     /// Bytes held by the structure (nodes, triangles, ids).
     fn bytes(&self) -> usize {
-        self.nodes.len() * std::mem::size_of::<Node>()
-            + self.tris.len() * std::mem::size_of::<[Vec3; 3]>()
+        self.nodes.len() * std::mem::size_of::<Node4>()
+            + self.tris.len() * std::mem::size_of::<Tri4>()
             + self.ids.len() * std::mem::size_of::<TriId>()
     }
 
     /// Walks the tree front to back, keeping the closest accepted hit; with `any`, returns the first.
     #[inline(always)]
     fn traverse(&self, ray: &Ray, any: bool) -> Option<Hit> {
-        if self.tris.is_empty() {
+        if self.nodes.is_empty() {
             return None;
         }
         let sh = RayShear::new(ray.d);
@@ -130,129 +158,189 @@ impl Bvh {
         // Ize 2013: widen the far slab distance by 1 + 2 gamma(3) so that rounding never culls a box
         // that the ray touches.
         let far_scale = 1.0 + 2.0 * gamma(3);
-        let neg = [inv.x < 0.0, inv.y < 0.0, inv.z < 0.0];
+        let o = ray.o.to_array();
+        let inv = inv.to_array();
+        // Per axis, which bound array is entered first.
+        let near_is_hi = [inv[0] < 0.0, inv[1] < 0.0, inv[2] < 0.0];
         let mut t_max = ray.t_max;
         let mut best: Option<Hit> = None;
-        let mut stack = [0u32; 64];
-        let mut sp = 0;
-        let mut node_idx = 0u32;
-        let root = &self.nodes[0];
-        slab(root, ray.o, inv, neg, far_scale, ray.t_min, t_max)?;
-        loop {
-            let node = &self.nodes[node_idx as usize];
-            if node.count > 0 {
-                let start = node.index as usize;
-                for k in start..start + node.count as usize {
-                    let [a, b, c] = self.tris[k];
-                    if let Some(h) = triangle::intersect(ray.o, &sh, a, b, c, ray.t_min, t_max) {
-                        let id = self.ids[k];
+        // Entries: (child, count, entry distance); inner nodes have count 0.
+        let mut stack = [(0u32, 0u32, 0.0f32); 64];
+        let mut sp = 1;
+        while sp > 0 {
+            sp -= 1;
+            let (child, count, t_enter) = stack[sp];
+            if t_enter > t_max {
+                continue;
+            }
+            if count > 0 {
+                let first = child as usize;
+                for packet in first..first + (count as usize).div_ceil(4) {
+                    let h = triangle::intersect4(ray.o, &sh, &self.tris[packet], ray.t_min, t_max);
+                    for lane in 0..4 {
+                        // t_max shrinks as lanes are accepted: later, farther lanes drop out.
+                        if !(h.t[lane] < t_max) {
+                            continue;
+                        }
+                        let id = self.ids[4 * packet + lane];
                         let inst = id.inst & !ALPHA_BIT;
                         if id.inst & ALPHA_BIT != 0
-                            && !self.scene.alpha_passes(inst, id.prim, h.u, h.v, ray)
+                            && !self
+                                .scene
+                                .alpha_passes(inst, id.prim, h.u[lane], h.v[lane], ray)
                         {
                             continue;
                         }
-                        if any {
-                            return Some(Hit {
-                                t: h.t,
-                                u: h.u,
-                                v: h.v,
-                                inst,
-                                prim: id.prim,
-                            });
-                        }
-                        t_max = h.t;
-                        best = Some(Hit {
-                            t: h.t,
-                            u: h.u,
-                            v: h.v,
+                        let hit = Hit {
+                            t: h.t[lane],
+                            u: h.u[lane],
+                            v: h.v[lane],
                             inst,
                             prim: id.prim,
-                        });
+                        };
+                        if any {
+                            return Some(hit);
+                        }
+                        t_max = hit.t;
+                        best = Some(hit);
                     }
                 }
-            } else {
-                let l = node.index;
-                let r = l + 1;
-                let tl = slab(
-                    &self.nodes[l as usize],
-                    ray.o,
-                    inv,
-                    neg,
-                    far_scale,
-                    ray.t_min,
-                    t_max,
-                );
-                let tr = slab(
-                    &self.nodes[r as usize],
-                    ray.o,
-                    inv,
-                    neg,
-                    far_scale,
-                    ray.t_min,
-                    t_max,
-                );
-                match (tl, tr) {
-                    (Some(a), Some(b)) => {
-                        let (near, far) = if a <= b { (l, r) } else { (r, l) };
-                        stack[sp] = far;
-                        sp += 1;
-                        node_idx = near;
-                        continue;
-                    }
-                    (Some(_), None) => {
-                        node_idx = l;
-                        continue;
-                    }
-                    (None, Some(_)) => {
-                        node_idx = r;
-                        continue;
-                    }
-                    (None, None) => {}
+                continue;
+            }
+            let node = &self.nodes[child as usize];
+            let mut t0 = [ray.t_min; 4];
+            let mut t1 = [t_max; 4];
+            for axis in 0..3 {
+                let (near, far) = if near_is_hi[axis] {
+                    (&node.hi[axis], &node.lo[axis])
+                } else {
+                    (&node.lo[axis], &node.hi[axis])
+                };
+                for l in 0..4 {
+                    let tn = (near[l] - o[axis]) * inv[axis];
+                    let tf = (far[l] - o[axis]) * inv[axis] * far_scale;
+                    // Written as selects so they compile to maxps/minps; a NaN distance (0 * inf on a
+                    // slab face) fails the comparison and leaves the interval as it was.
+                    t0[l] = if tn > t0[l] { tn } else { t0[l] };
+                    t1[l] = if tf < t1[l] { tf } else { t1[l] };
                 }
             }
-            if sp == 0 {
-                break;
+            // Push the children that were hit, farthest first, so the nearest is popped next.
+            let mut order = [(0.0f32, 0usize); 4];
+            let mut n = 0;
+            for l in 0..4 {
+                if t0[l] <= t1[l] {
+                    let mut k = n;
+                    while k > 0 && order[k - 1].0 < t0[l] {
+                        order[k] = order[k - 1];
+                        k -= 1;
+                    }
+                    order[k] = (t0[l], l);
+                    n += 1;
+                }
             }
-            sp -= 1;
-            node_idx = stack[sp];
+            for &(t, l) in &order[..n] {
+                stack[sp] = (node.child[l], node.count[l], t);
+                sp += 1;
+            }
         }
         best
     }
+}
+
+/// The binary tree and the triangles it orders, as input to `collapse`.
+struct Source<'a> {
+    bin: &'a [Node],
+    order: &'a [u32],
+    tris: &'a [[Vec3; 3]],
+    ids: &'a [TriId],
+}
+
+/// The 4-wide tree being built, with its triangle packets.
+struct Collapsed {
+    nodes: Vec<Node4>,
+    packets: Vec<Tri4>,
+    ids: Vec<TriId>,
+}
+
+/// Packs a binary leaf's triangles into packets of four; returns the first packet's index.
+fn pack_leaf(src: &Source, leaf: &Node, out: &mut Collapsed) -> u32 {
+    let first = out.packets.len() as u32;
+    let refs = &src.order[leaf.index as usize..(leaf.index + leaf.count) as usize];
+    for chunk in refs.chunks(4) {
+        let tris: Vec<[Vec3; 3]> = chunk.iter().map(|&i| src.tris[i as usize]).collect();
+        out.packets.push(Tri4::new(&tris));
+        for lane in 0..4 {
+            out.ids.push(chunk.get(lane).map_or(
+                TriId {
+                    inst: u32::MAX,
+                    prim: u32::MAX,
+                },
+                |&i| src.ids[i as usize],
+            ));
+        }
+    }
+    first
+}
+
+/// Turns the binary tree below `at` into 4-wide nodes appended to `out`; returns the new node's index.
+fn collapse(src: &Source, at: usize, out: &mut Collapsed) -> u32 {
+    let bin = src.bin;
+    // Open the largest inner child until there are four children (or only leaves left).
+    let mut kids: Vec<usize> = if bin[at].count > 0 {
+        vec![at]
+    } else {
+        let l = bin[at].index as usize;
+        vec![l, l + 1]
+    };
+    let area = |i: usize| {
+        let n = &bin[i];
+        Aabb {
+            min: Vec3::from_array(n.min),
+            max: Vec3::from_array(n.max),
+        }
+        .surface_area()
+    };
+    while kids.len() < 4 {
+        let Some(pos) = (0..kids.len())
+            .filter(|&k| bin[kids[k]].count == 0)
+            .max_by(|&a, &b| area(kids[a]).total_cmp(&area(kids[b])))
+        else {
+            break;
+        };
+        let l = bin[kids[pos]].index as usize;
+        kids.swap_remove(pos);
+        kids.extend([l, l + 1]);
+    }
+    let index = out.nodes.len();
+    out.nodes.push(Node4 {
+        lo: [[f32::INFINITY; 4]; 3],
+        hi: [[f32::NEG_INFINITY; 4]; 3],
+        child: [0; 4],
+        count: [0; 4],
+    });
+    for (lane, &k) in kids.iter().enumerate() {
+        let n = bin[k];
+        let (child, count) = if n.count > 0 {
+            (pack_leaf(src, &n, out), n.count)
+        } else {
+            (collapse(src, k, out), 0)
+        };
+        let node = &mut out.nodes[index];
+        for axis in 0..3 {
+            node.lo[axis][lane] = n.min[axis];
+            node.hi[axis][lane] = n.max[axis];
+        }
+        node.child[lane] = child;
+        node.count[lane] = count;
+    }
+    index as u32
 }
 
 /// gamma(n) of pbrt: a bound on the relative error of n floating-point operations.
 const fn gamma(n: i32) -> f32 {
     let e = f32::EPSILON * 0.5 * n as f32;
     e / (1.0 - e)
-}
-
-/// Entry distance of the ray into the node's box, or None when it misses within `[t_min, t_max]`.
-#[inline(always)]
-fn slab(
-    node: &Node,
-    o: Vec3,
-    inv: Vec3,
-    neg: [bool; 3],
-    far_scale: f32,
-    t_min: f32,
-    t_max: f32,
-) -> Option<f32> {
-    let mut t0 = t_min;
-    let mut t1 = t_max;
-    for a in 0..3 {
-        let (lo, hi) = if neg[a] {
-            (node.max[a], node.min[a])
-        } else {
-            (node.min[a], node.max[a])
-        };
-        let near = (lo - o[a]) * inv[a];
-        let far = (hi - o[a]) * inv[a] * far_scale;
-        // NaN (0 * inf on a slab face) must not shrink the interval: max/min keep the other operand.
-        t0 = t0.max(near);
-        t1 = t1.min(far);
-    }
-    (t0 <= t1).then_some(t0)
 }
 
 fn build_subtree(refs: Vec<PrimRef>) -> Subtree {

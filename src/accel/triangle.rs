@@ -55,9 +55,10 @@ pub fn intersect(
     t_min: f32,
     t_max: f32,
 ) -> Option<TriHit> {
-    let a = a - o;
-    let b = b - o;
-    let c = c - o;
+    // Plain arrays: indexing them by the per-ray axis is a load, where indexing a Vec3 is a match.
+    let a = (a - o).to_array();
+    let b = (b - o).to_array();
+    let c = (c - o).to_array();
     let ax = a[sh.kx] - sh.sx * a[sh.kz];
     let ay = a[sh.ky] - sh.sy * a[sh.kz];
     let bx = b[sh.kx] - sh.sx * b[sh.kz];
@@ -81,10 +82,7 @@ pub fn intersect(
     if det == 0.0 {
         return None;
     }
-    let az = sh.sz * a[sh.kz];
-    let bz = sh.sz * b[sh.kz];
-    let cz = sh.sz * c[sh.kz];
-    let t_scaled = u * az + v * bz + w * cz;
+    let t_scaled = u * (sh.sz * a[sh.kz]) + v * (sh.sz * b[sh.kz]) + w * (sh.sz * c[sh.kz]);
     let inv = 1.0 / det;
     let t = t_scaled * inv;
     if !(t > t_min && t < t_max) {
@@ -188,4 +186,109 @@ mod direction_tests {
         }
         assert_eq!(missed, 0);
     }
+}
+
+/// Four triangles side by side, `p[vertex][axis][lane]`, for testing one ray against all of them with
+/// vector instructions. Unused lanes are skipped by the caller's lane count.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(16))]
+pub struct Tri4 {
+    pub p: [[[f32; 4]; 3]; 3],
+}
+
+impl Tri4 {
+    pub fn new(tris: &[[Vec3; 3]]) -> Self {
+        assert!(tris.len() <= 4);
+        let mut p = [[[f32::NAN; 4]; 3]; 3];
+        for (lane, t) in tris.iter().enumerate() {
+            for (vertex, v) in t.iter().enumerate() {
+                for axis in 0..3 {
+                    p[vertex][axis][lane] = v[axis];
+                }
+            }
+        }
+        Self { p }
+    }
+}
+
+/// Hits of up to four triangles: per lane the distance (`f32::INFINITY` for a miss) and barycentrics.
+#[derive(Clone, Copy, Debug)]
+pub struct Hits4 {
+    pub t: [f32; 4],
+    pub u: [f32; 4],
+    pub v: [f32; 4],
+}
+
+/// The watertight test of `intersect` on four triangles at once. Each lane performs exactly the
+/// operations of the scalar test, in the same order, so both give bit-identical hits.
+#[inline(always)]
+pub fn intersect4(o: Vec3, sh: &RayShear, tri: &Tri4, t_min: f32, t_max: f32) -> Hits4 {
+    let o = o.to_array();
+    let (kx, ky, kz) = (sh.kx, sh.ky, sh.kz);
+    let rel = |vertex: usize, axis: usize| -> [f32; 4] {
+        let c = &tri.p[vertex][axis];
+        [
+            c[0] - o[axis],
+            c[1] - o[axis],
+            c[2] - o[axis],
+            c[3] - o[axis],
+        ]
+    };
+    let (a_x, a_y, a_z) = (rel(0, kx), rel(0, ky), rel(0, kz));
+    let (b_x, b_y, b_z) = (rel(1, kx), rel(1, ky), rel(1, kz));
+    let (c_x, c_y, c_z) = (rel(2, kx), rel(2, ky), rel(2, kz));
+    let mut out = Hits4 {
+        t: [f32::INFINITY; 4],
+        u: [0.0; 4],
+        v: [0.0; 4],
+    };
+    let mut eu = [0.0f32; 4];
+    let mut ev = [0.0f32; 4];
+    let mut ew = [0.0f32; 4];
+    let mut t_scaled = [0.0f32; 4];
+    for l in 0..4 {
+        let ax = a_x[l] - sh.sx * a_z[l];
+        let ay = a_y[l] - sh.sy * a_z[l];
+        let bx = b_x[l] - sh.sx * b_z[l];
+        let by = b_y[l] - sh.sy * b_z[l];
+        let cx = c_x[l] - sh.sx * c_z[l];
+        let cy = c_y[l] - sh.sy * c_z[l];
+        eu[l] = cx * by - cy * bx;
+        ev[l] = ax * cy - ay * cx;
+        ew[l] = bx * ay - by * ax;
+        t_scaled[l] =
+            eu[l] * (sh.sz * a_z[l]) + ev[l] * (sh.sz * b_z[l]) + ew[l] * (sh.sz * c_z[l]);
+    }
+    for l in 0..4 {
+        let (mut u, mut v, mut w) = (eu[l], ev[l], ew[l]);
+        let mut ts = t_scaled[l];
+        if u == 0.0 || v == 0.0 || w == 0.0 {
+            // The rare exact-zero case: recompute as the scalar test does.
+            let ax = a_x[l] - sh.sx * a_z[l];
+            let ay = a_y[l] - sh.sy * a_z[l];
+            let bx = b_x[l] - sh.sx * b_z[l];
+            let by = b_y[l] - sh.sy * b_z[l];
+            let cx = c_x[l] - sh.sx * c_z[l];
+            let cy = c_y[l] - sh.sy * c_z[l];
+            u = (cx as f64 * by as f64 - cy as f64 * bx as f64) as f32;
+            v = (ax as f64 * cy as f64 - ay as f64 * cx as f64) as f32;
+            w = (bx as f64 * ay as f64 - by as f64 * ax as f64) as f32;
+            ts = u * (sh.sz * a_z[l]) + v * (sh.sz * b_z[l]) + w * (sh.sz * c_z[l]);
+        }
+        if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+            continue;
+        }
+        let det = u + v + w;
+        if det == 0.0 {
+            continue;
+        }
+        let inv = 1.0 / det;
+        let t = ts * inv;
+        if t > t_min && t < t_max {
+            out.t[l] = t;
+            out.u[l] = v * inv;
+            out.v[l] = w * inv;
+        }
+    }
+    out
 }
