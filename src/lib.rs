@@ -9,6 +9,7 @@ pub mod geometry;
 pub mod render;
 pub mod sample;
 pub mod scene;
+pub mod turntable;
 
 pub use geometry::{Aabb, Hit, Ray};
 pub use scene::Scene;

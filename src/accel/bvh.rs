@@ -179,7 +179,8 @@ impl Bvh {
                     let h = triangle::intersect4(ray.o, &sh, &self.tris[packet], ray.t_min, t_max);
                     for lane in 0..4 {
                         // t_max shrinks as lanes are accepted: later, farther lanes drop out.
-                        if !(h.t[lane] < t_max) {
+                        // (A miss is +inf, which fails too.)
+                        if h.t[lane] >= t_max {
                             continue;
                         }
                         let id = self.ids[4 * packet + lane];

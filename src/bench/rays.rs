@@ -190,7 +190,7 @@ fn trace(accel: &dyn Accel, rays: &[Ray], any_hit: bool) -> usize {
 }
 
 pub fn run(input: &str, config: &RaysConfig) -> Result<Report> {
-    if config.threads.iter().any(|&t| t == 0) {
+    if config.threads.contains(&0) {
         bail!("thread counts must be at least 1");
     }
     let scene = Arc::new(load_input(input)?);

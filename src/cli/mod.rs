@@ -2,6 +2,7 @@
 //! Nothing else in glint knows about flags; errors travel up as `anyhow` chains to `main`.
 
 pub mod bench;
+pub mod turntable;
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -20,6 +21,8 @@ use crate::scene::{defaults, Camera, Projection, Scene};
 
 /// Largest accepted image edge, in pixels.
 const MAX_EDGE: usize = 32_768;
+/// Largest accepted pixel count (the film holds 16 bytes a pixel: 2 GiB at this size).
+const MAX_PIXELS: usize = 1 << 27;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -44,6 +47,8 @@ pub enum Command {
     /// Benchmarks: ray throughput per backend (`rays`).
     #[command(subcommand)]
     Bench(bench::BenchCommand),
+    /// Render a turntable sequence (camera orbit or --spin): resumable, shardable, with previews.
+    Turntable(turntable::TurntableArgs),
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -103,6 +108,57 @@ pub struct RenderArgs {
     /// No progress bar or summary line.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Sample generator: random, stratified or sobol (Owen-scrambled).
+    #[arg(long, value_enum, default_value_t = crate::sample::SamplerKind::default())]
+    pub sampler: crate::sample::SamplerKind,
+    /// Pixel reconstruction filter: box, tent, gaussian or mitchell.
+    #[arg(long, value_enum, default_value_t = crate::film::filter::FilterKind::default())]
+    pub filter: crate::film::filter::FilterKind,
+    /// Filter radius in pixels (default: box 0.5, tent 1, gaussian 1.5, mitchell 2).
+    #[arg(long)]
+    pub filter_radius: Option<f32>,
+    /// Adaptive sampling: pixels stop once their estimated relative error is under --target-error.
+    #[arg(long)]
+    pub adaptive: bool,
+    /// Adaptive method: variance (error from half buffers, in rounds) or corners (Whitted-style
+    /// subdivision where corner samples differ); implies --adaptive.
+    #[arg(long, value_enum)]
+    pub adaptive_mode: Option<render::AdaptiveMode>,
+    /// Adaptive threshold: relative RMS error per pixel (variance) or corner contrast (corners).
+    #[arg(long, default_value_t = 0.01)]
+    pub target_error: f32,
+    /// Fewest samples an adaptive pixel takes.
+    #[arg(long, default_value_t = 16)]
+    pub min_spp: u32,
+    /// Most samples an adaptive pixel takes.
+    #[arg(long, default_value_t = 1024)]
+    pub max_spp: u32,
+    /// Render progressively until this time is spent (e.g. 30s, 2m, 500ms); --spp is then ignored.
+    #[arg(long, value_parser = parse_duration)]
+    pub time: Option<std::time::Duration>,
+    /// Also write the samples each pixel took (.exr: counts; .png: counts / the most).
+    #[arg(long)]
+    pub spp_map: Option<PathBuf>,
+}
+
+/// A duration such as `30s`, `1.5m`, `500ms` or `20` (seconds).
+pub fn parse_duration(s: &str) -> Result<std::time::Duration, String> {
+    let t = s.trim();
+    let (num, scale) = if let Some(n) = t.strip_suffix("ms") {
+        (n, 1e-3)
+    } else if let Some(n) = t.strip_suffix('s') {
+        (n, 1.0)
+    } else if let Some(n) = t.strip_suffix('m') {
+        (n, 60.0)
+    } else if let Some(n) = t.strip_suffix('h') {
+        (n, 3600.0)
+    } else {
+        (t, 1.0)
+    };
+    match num.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(std::time::Duration::from_secs_f64(v * scale)),
+        _ => Err(format!("'{s}': expected a positive duration such as 30s, 2m or 500ms")),
+    }
 }
 
 fn parse_vec3(s: &str) -> Result<Vec3, String> {
@@ -122,6 +178,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Render(args) => render_command(args),
         Command::Info { input } => info_command(&input),
         Command::Bench(cmd) => bench::run(cmd),
+        Command::Turntable(args) => turntable::run(args),
     }
 }
 
@@ -232,6 +289,13 @@ fn render_command(args: RenderArgs) -> Result<()> {
             args.height
         );
     }
+    if args.width * args.height > MAX_PIXELS {
+        bail!(
+            "image size {}x{} is out of range (at most {MAX_PIXELS} pixels)",
+            args.width,
+            args.height
+        );
+    }
     if args.spp == 0 || args.spp > 1 << 20 {
         bail!("--spp {} is out of range (1..={})", args.spp, 1 << 20);
     }
@@ -286,16 +350,42 @@ fn render_command(args: RenderArgs) -> Result<()> {
         spp: args.spp,
         max_depth: args.max_depth,
         seed: args.seed,
+        sampler: args.sampler,
+        filter: args.filter,
+        filter_radius: args.filter_radius,
+        adaptive: match (args.adaptive, args.adaptive_mode) {
+            (_, Some(m)) => m,
+            (true, None) => render::AdaptiveMode::Variance,
+            (false, None) => render::AdaptiveMode::Off,
+        },
+        target_error: args.target_error,
+        min_spp: args.min_spp,
+        max_spp: args.max_spp,
+        time_budget: args.time,
     };
-    let (image, stats) = render::render(&scene, accel.as_ref(), &camera, &settings, &progress);
-    film::write(&image, &args.output, args.exposure)?;
+    let out = render::render_full(&scene, accel.as_ref(), &camera, &settings, &progress);
+    let (image, stats) = (&out.image, out.stats);
+    film::write(image, &args.output, args.exposure)?;
+    if let Some(path) = &args.spp_map {
+        let scale = match film::Format::from_path(path)? {
+            film::Format::Exr => 1.0,
+            film::Format::Png => 1.0 / stats.max_spp.max(1) as f32,
+        };
+        let values: Vec<f32> = out.spp.iter().map(|&n| n as f32 * scale).collect();
+        film::write(&film::Image::from_scalars(args.width, args.height, &values), path, 0.0)?;
+    }
+    let spp_text = if stats.min_spp == stats.max_spp {
+        format!("{}", stats.max_spp)
+    } else {
+        format!("{:.1} (min {}, max {}, {} rounds)", out.mean_spp(), stats.min_spp, stats.max_spp, stats.rounds)
+    };
     if !args.quiet {
         eprintln!(
             "{}: {}x{} at {} spp with {} in {:.2} s: {} rays, {:.2} Mrays/s (load {:.2} s, build {:.3} s)",
             args.output.display(),
             args.width,
             args.height,
-            args.spp,
+            spp_text,
             accel.name(),
             stats.seconds,
             stats.rays,

@@ -1,0 +1,327 @@
+//! `glint turntable`: flags for a turntable sequence, then `crate::turntable` does the work.
+//! Load and build happen once; a finished sequence (all frames on disk) skips both and only previews.
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::Instant;
+
+use anyhow::{bail, Context, Result};
+use clap::ValueEnum;
+use indicatif::{ProgressBar, ProgressStyle};
+
+use super::{load, DefaultLights, MAX_EDGE};
+use crate::accel::{self, Backend};
+use crate::film::Format;
+use crate::render::RenderSettings;
+use crate::scene::defaults;
+use crate::turntable::{
+    self, FrameNames, LightMode, Motion, Orbit, Shard, Turntable, DEFAULT_ELEVATION_DEG,
+};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FrameFormat {
+    Png,
+    Exr,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Lights {
+    /// Lights stay where they are while the camera moves.
+    World,
+    /// Lights turn with the camera, so every frame is lit the same way.
+    Camera,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct TurntableArgs {
+    /// A .gltf, .glb or .obj file.
+    pub input: PathBuf,
+    /// Frame pattern with a run of # for the frame index (frames/helmet_####.png), or a folder
+    /// (frames are then frame_####.<format> inside it; created when missing).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Frames in one full turn.
+    #[arg(long, default_value_t = 120)]
+    pub frames: u32,
+    /// File type of the frames in folder mode (a pattern's extension decides otherwise).
+    #[arg(long, value_enum)]
+    pub format: Option<FrameFormat>,
+    /// Camera height above the model's centre, in degrees.
+    #[arg(long, default_value_t = DEFAULT_ELEVATION_DEG, allow_hyphen_values = true)]
+    pub elevation: f32,
+    /// Azimuth of frame 0 in degrees (0: in front, on +Z).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub azimuth: f32,
+    /// Camera distance from the model's centre (default: the bounding sphere fills the view).
+    #[arg(long)]
+    pub distance: Option<f32>,
+    /// Vertical field of view in degrees.
+    #[arg(long)]
+    pub fov: Option<f32>,
+    /// Turn the model in front of a fixed camera instead of orbiting the camera.
+    #[arg(long)]
+    pub spin: bool,
+    /// What the lights are fixed to while the camera orbits.
+    #[arg(long, value_enum, default_value_t = Lights::World)]
+    pub lights: Lights,
+    /// Motion blur: degrees of the frame interval the shutter is open (e.g. 180).
+    #[arg(long)]
+    pub shutter_angle: Option<f32>,
+    /// Render only frames f with f mod N == I (I/N), for one machine of N.
+    #[arg(long)]
+    pub shard: Option<Shard>,
+    /// Render only frames A..B (half-open; clipped to the sequence).
+    #[arg(long, value_parser = turntable::parse_frame_range)]
+    pub frame_range: Option<std::ops::Range<u32>>,
+    /// Render frames whose file already exists again (default: skip them, which resumes a run).
+    #[arg(long)]
+    pub overwrite: bool,
+    /// Animated GIF of the whole sequence, built once every frame is on disk.
+    #[arg(long)]
+    pub preview: Option<PathBuf>,
+    /// Frame rate of the GIF preview.
+    #[arg(long, default_value_t = 24.0)]
+    pub preview_fps: f32,
+    /// Largest GIF width in pixels (frames are downscaled to it).
+    #[arg(long, default_value_t = 480)]
+    pub preview_width: u32,
+    /// PNG grid of all frames, built once every frame is on disk.
+    #[arg(long)]
+    pub contact_sheet: Option<PathBuf>,
+    #[arg(long, default_value_t = 800)]
+    pub width: usize,
+    #[arg(long, default_value_t = 600)]
+    pub height: usize,
+    /// Samples per pixel.
+    #[arg(long, default_value_t = 16)]
+    pub spp: u32,
+    /// Bounces after the camera ray (1 = direct light only).
+    #[arg(long, default_value_t = 5)]
+    pub max_depth: u32,
+    /// Ray-tracing backend: embree or bvh.
+    #[arg(long, default_value_t = Backend::default_available())]
+    pub backend: Backend,
+    /// Exposure in stops, applied to PNG frames and previews (the same on every frame).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub exposure: f32,
+    /// The default light rig (environment + key light), placed relative to frame 0's camera.
+    #[arg(long, value_enum, default_value_t = DefaultLights::Auto)]
+    pub default_lights: DefaultLights,
+    /// Base seed; each frame mixes in its index, so a frame is the same on any machine.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// No progress bar or summary.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+fn check_extension(path: &Path, ext: &str, flag: &str) -> Result<()> {
+    let ok = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case(ext));
+    if !ok {
+        bail!("{flag} {}: expected a .{ext} file", path.display());
+    }
+    Ok(())
+}
+
+pub fn run(args: TurntableArgs) -> Result<()> {
+    if args.width == 0 || args.height == 0 || args.width > MAX_EDGE || args.height > MAX_EDGE {
+        bail!(
+            "image size {}x{} is out of range (1..={MAX_EDGE} per edge)",
+            args.width,
+            args.height
+        );
+    }
+    if args.spp == 0 || args.spp > 1 << 20 {
+        bail!("--spp {} is out of range (1..={})", args.spp, 1 << 20);
+    }
+    if !(args.elevation > -90.0 && args.elevation < 90.0) {
+        bail!("--elevation must be between -90 and 90 degrees (exclusive)");
+    }
+    if !args.azimuth.is_finite() {
+        bail!("--azimuth must be a finite number of degrees");
+    }
+    let yfov = args.fov.unwrap_or(defaults::DEFAULT_FOV_DEG).to_radians();
+    if !(yfov > 0.0 && yfov < std::f32::consts::PI) {
+        bail!("--fov must be between 0 and 180 degrees");
+    }
+    if let Some(d) = args.distance.filter(|d| !(d.is_finite() && *d > 0.0)) {
+        bail!("--distance {d} must be a positive number");
+    }
+    let shutter_angle = args.shutter_angle.unwrap_or(0.0);
+    if !(0.0..=360.0).contains(&shutter_angle) {
+        bail!("--shutter-angle {shutter_angle} is out of range (0..=360 degrees)");
+    }
+    if let Some(p) = &args.preview {
+        check_extension(p, "gif", "--preview")?;
+    }
+    if let Some(p) = &args.contact_sheet {
+        check_extension(p, "png", "--contact-sheet")?;
+    }
+    let format = args.format.map(|f| match f {
+        FrameFormat::Png => Format::Png,
+        FrameFormat::Exr => Format::Exr,
+    });
+    let names = FrameNames::from_output(&args.output, format, args.frames)?;
+    let selected = turntable::select_frames(args.frames, args.shard, args.frame_range.clone())?;
+    if let Some(n) = args.threads {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(n.max(1))
+            .build_global()
+            .context("setting up the thread pool")?;
+    }
+
+    let exists = |f: &u32| names.path(*f).exists();
+    let nothing_to_do = !args.overwrite && selected.iter().all(exists);
+    if nothing_to_do {
+        // A finished (or finished-by-other-shards) sequence: no need to load or build anything.
+        if !args.quiet {
+            eprintln!(
+                "{}: all {} selected frames exist; nothing to render",
+                args.input.display(),
+                selected.len()
+            );
+        }
+    } else {
+        render_frames(&args, names.clone(), &selected, yfov, shutter_angle)?;
+    }
+
+    if args.preview.is_some() || args.contact_sheet.is_some() {
+        let missing = turntable::missing_frames(&names, args.frames);
+        if let Some(first) = missing.first() {
+            eprintln!(
+                "warning: previews skipped: {} of {} frames are not on disk yet (first: {}); run again once every shard has finished",
+                missing.len(),
+                args.frames,
+                names.path(*first).display()
+            );
+            return Ok(());
+        }
+        let t = Instant::now();
+        if let Some(p) = &args.preview {
+            turntable::write_gif(
+                &names,
+                args.frames,
+                args.exposure,
+                p,
+                args.preview_fps,
+                args.preview_width,
+            )?;
+        }
+        if let Some(p) = &args.contact_sheet {
+            turntable::write_contact_sheet(&names, args.frames, args.exposure, p, 256)?;
+        }
+        if !args.quiet {
+            eprintln!("previews written in {:.2} s", t.elapsed().as_secs_f64());
+        }
+    }
+    Ok(())
+}
+
+fn render_frames(
+    args: &TurntableArgs,
+    names: FrameNames,
+    selected: &[u32],
+    yfov: f32,
+    shutter_angle: f32,
+) -> Result<()> {
+    let t0 = Instant::now();
+    let mut scene = load(&args.input)?;
+    let load_s = t0.elapsed().as_secs_f64();
+
+    let aspect = args.width as f32 / args.height as f32;
+    let mut orbit = Orbit::framing(&scene.bounds(), yfov, aspect, args.elevation.to_radians());
+    orbit.start_azimuth = args.azimuth.to_radians();
+    if let Some(d) = args.distance {
+        orbit.distance = d;
+    }
+    let tt = Turntable {
+        frames: args.frames,
+        names,
+        orbit,
+        motion: if args.spin {
+            Motion::Spin
+        } else {
+            Motion::Orbit
+        },
+        lights: match args.lights {
+            Lights::World => LightMode::World,
+            Lights::Camera => LightMode::Camera,
+        },
+        shutter_angle,
+        settings: RenderSettings {
+            width: args.width,
+            height: args.height,
+            spp: args.spp,
+            max_depth: args.max_depth,
+            seed: args.seed,
+            ..Default::default()
+        },
+        exposure: args.exposure,
+        overwrite: args.overwrite,
+    };
+    let add_rig = match args.default_lights {
+        DefaultLights::On => true,
+        DefaultLights::Off => false,
+        DefaultLights::Auto => !defaults::has_own_lights(&scene),
+    };
+    if add_rig {
+        scene
+            .lights
+            .extend(defaults::light_rig(&tt.first_camera().to_world));
+    }
+    let scene = Arc::new(scene);
+
+    let t1 = Instant::now();
+    let accel = accel::build(scene.clone(), args.backend)?;
+    let build_s = t1.elapsed().as_secs_f64();
+
+    let progress = if args.quiet || !std::io::stderr().is_terminal() {
+        ProgressBar::hidden()
+    } else {
+        let bar = ProgressBar::new(0);
+        bar.set_style(
+            ProgressStyle::with_template(
+                "{spinner} turntable [{bar:40}] {pos}/{len} frames ({msg}), {elapsed} elapsed, eta {eta}",
+            )
+            .expect("valid template")
+            .progress_chars("=> "),
+        );
+        bar
+    };
+    let report = tt.render_sequence(&scene, accel.as_ref(), selected, &progress)?;
+    if !args.quiet {
+        let total: f64 = report.frame_seconds.iter().sum();
+        eprintln!(
+            "{}: {} frames rendered, {} skipped (of {} selected, {} in the sequence), {}x{} at {} spp with {}",
+            args.input.display(),
+            report.rendered.len(),
+            report.skipped.len(),
+            selected.len(),
+            args.frames,
+            args.width,
+            args.height,
+            args.spp,
+            accel.name(),
+        );
+        eprintln!(
+            "cost: load {load_s:.3} s, build {build_s:.3} s (once), per frame {:.3} s mean ({:.2} s for {} frames, {:.2} Mrays/s){}",
+            report.mean_frame_seconds(),
+            total,
+            report.rendered.len(),
+            report.rays as f64 / total.max(1e-9) / 1e6,
+            if report.scene_copy_seconds > 0.0 {
+                format!(", scene copy for moving lights {:.3} s", report.scene_copy_seconds)
+            } else {
+                String::new()
+            }
+        );
+    }
+    Ok(())
+}
