@@ -1,5 +1,6 @@
-//! Embree and the Rust BVH must agree: on a million random rays per model (same primitive, same
-//! distance) and on whole renders of every asset (no NaN, mean absolute difference tiny).
+//! Every backend must agree with the others: Embree and the Rust BVH, and the grid and the BVH, on a
+//! million random rays per model (same primitive, same distance), and all of them on whole renders of
+//! every asset (no NaN, mean absolute difference tiny).
 
 mod common;
 
@@ -14,6 +15,7 @@ fn every_asset_renders_finite_and_identically_in_both_backends() {
         spp: 2,
         max_depth: 3,
         seed: 1,
+        ..Default::default()
     };
     let files = common::all_model_files();
     assert!(!files.is_empty());
@@ -30,73 +32,83 @@ fn every_asset_renders_finite_and_identically_in_both_backends() {
                 path.display()
             );
         }
-        if let [(_, a), (_, b)] = &images[..] {
+        let (b0, a) = &images[0];
+        for (b1, b) in &images[1..] {
             let mean = a.mean_rgb().max(1e-6);
             let mad = a.mean_abs_diff(b);
-            eprintln!("{}: mean {mean:.4}, backend MAD {mad:.2e}", path.display());
+            eprintln!(
+                "{}: mean {mean:.4}, {b0}/{b1} MAD {mad:.2e}",
+                path.display()
+            );
             assert!(
                 mad <= 1e-3 * mean,
-                "{}: backends differ, MAD {mad} vs mean {mean}",
+                "{}: {b0} and {b1} differ, MAD {mad} vs mean {mean}",
                 path.display()
             );
         }
     }
 }
 
-#[cfg(feature = "embree")]
+/// The pairs compared ray by ray, with how many rays: the BVH against Embree (when built with it) on a
+/// million, the grid against the BVH on fewer (the grid is slow on some assets, and with the same
+/// triangle test the two must agree exactly anyway).
+fn pairs() -> Vec<(Backend, Backend, usize)> {
+    let mut v = Vec::new();
+    if cfg!(feature = "embree") {
+        v.push((Backend::Bvh, Backend::Embree, RAYS));
+    }
+    v.push((Backend::Grid, Backend::Bvh, RAYS / 5));
+    v
+}
+
+const RAYS: usize = 1_000_000;
+
 #[test]
 fn a_million_random_rays_per_model_hit_the_same_primitive() {
-    const RAYS: usize = 1_000_000;
     for path in common::all_model_files() {
         let scene = std::sync::Arc::new(glint::Scene::load(&path).unwrap());
         if scene.triangle_count() == 0 {
             continue;
         }
         let rays = compare::random_rays(&scene, RAYS, 42);
-        let bvh = accel::build(scene.clone(), Backend::Bvh).unwrap();
-        let embree = accel::build(scene.clone(), Backend::Embree).unwrap();
-        let g = compare::compare(&scene, bvh.as_ref(), embree.as_ref(), &rays);
-        eprintln!(
-            "{}: {} rays, {} hits, {} same, {} ties, {} grazing, {} silhouette edges, {} alpha edges, {} mismatches, {} occlusion mismatches",
-            path.display(),
-            g.rays,
-            g.hits,
-            g.same,
-            g.ties,
-            g.grazing,
-            g.edges,
-            g.alpha_edges,
-            g.mismatch_count,
-            g.occlusion_mismatches
-        );
-        for (ray, a, b) in &g.mismatches {
-            eprintln!("  {ray:?}\n    bvh    {a:?}\n    embree {b:?}");
+        for (first, second, n) in pairs() {
+            let a = accel::build(scene.clone(), first).unwrap();
+            let b = accel::build(scene.clone(), second).unwrap();
+            let started = std::time::Instant::now();
+            let g = compare::compare(&scene, a.as_ref(), b.as_ref(), &rays[..n]);
+            let took = started.elapsed().as_secs_f64();
+            let name = format!("{} ({first} vs {second})", path.display());
+            check_agreement(&name, first, second, &g, took);
         }
-        assert!(
-            g.hits > RAYS / 4,
-            "{}: too few hits to mean anything",
-            path.display()
-        );
-        assert_eq!(g.mismatch_count, 0, "{}", path.display());
-        // Grazing disagreements are rare (a property of float geometry, not of either backend).
-        assert!(
-            g.grazing <= RAYS / 2000,
-            "{}: {} grazing",
-            path.display(),
-            g.grazing
-        );
-        assert!(
-            g.edges <= RAYS / 10000,
-            "{}: {} edges",
-            path.display(),
-            g.edges
-        );
-        assert!(
-            g.alpha_edges <= RAYS / 10000,
-            "{}: {} alpha edges",
-            path.display(),
-            g.alpha_edges
-        );
-        assert_eq!(g.occlusion_mismatches, 0, "{}", path.display());
     }
+}
+
+fn check_agreement(name: &str, first: Backend, second: Backend, g: &compare::Agreement, took: f64) {
+    eprintln!(
+        "{name}, {took:.2} s: {} rays, {} hits, {} same, {} ties, {} grazing, {} silhouette edges, {} alpha edges, {} mismatches, {} occlusion mismatches",
+        g.rays,
+        g.hits,
+        g.same,
+        g.ties,
+        g.grazing,
+        g.edges,
+        g.alpha_edges,
+        g.mismatch_count,
+        g.occlusion_mismatches
+    );
+    for (ray, a, b) in &g.mismatches {
+        eprintln!("  {ray:?}\n    {first:<6} {a:?}\n    {second:<6} {b:?}");
+    }
+    let rays = g.rays;
+    assert!(g.hits > rays / 4, "{name}: too few hits to mean anything");
+    assert_eq!(g.mismatch_count, 0, "{name}");
+    // Grazing disagreements are rare (a property of float geometry, not of either backend).
+    assert!(g.grazing <= rays / 2000, "{name}: {} grazing", g.grazing);
+    assert!(g.edges <= rays / 10000, "{name}: {} edges", g.edges);
+    assert!(
+        g.alpha_edges <= rays / 10000,
+        "{name}: {} alpha edges",
+        g.alpha_edges
+    );
+    assert_eq!(g.occlusion_mismatches, 0, "{name}");
 }

@@ -5,6 +5,7 @@ pub mod bvh;
 pub mod compare;
 #[cfg(feature = "embree")]
 pub mod embree;
+pub mod grid;
 pub mod triangle;
 
 use std::fmt;
@@ -33,6 +34,7 @@ pub trait Accel: Send + Sync {
 pub enum Backend {
     Embree,
     Bvh,
+    Grid,
 }
 
 impl Backend {
@@ -50,6 +52,7 @@ impl Backend {
         if cfg!(feature = "embree") {
             v.push(Backend::Embree);
         }
+        v.push(Backend::Grid);
         v
     }
 }
@@ -59,6 +62,7 @@ impl fmt::Display for Backend {
         f.write_str(match self {
             Backend::Embree => "embree",
             Backend::Bvh => "bvh",
+            Backend::Grid => "grid",
         })
     }
 }
@@ -69,7 +73,10 @@ impl FromStr for Backend {
         match s.to_ascii_lowercase().as_str() {
             "embree" => Ok(Backend::Embree),
             "bvh" => Ok(Backend::Bvh),
-            _ => Err(format!("unknown backend '{s}' (expected embree or bvh)")),
+            "grid" => Ok(Backend::Grid),
+            _ => Err(format!(
+                "unknown backend '{s}' (expected embree, bvh or grid)"
+            )),
         }
     }
 }
@@ -86,6 +93,7 @@ pub enum AccelError {
 pub fn build(scene: Arc<Scene>, backend: Backend) -> Result<Box<dyn Accel>, AccelError> {
     match backend {
         Backend::Bvh => Ok(Box::new(bvh::Bvh::build(scene))),
+        Backend::Grid => Ok(Box::new(grid::GridAccel::build(scene))),
         #[cfg(feature = "embree")]
         Backend::Embree => Ok(Box::new(embree::EmbreeAccel::build(scene)?)),
         #[cfg(not(feature = "embree"))]

@@ -1,0 +1,755 @@
+//! A uniform voxel grid over world-space triangles (`--backend grid`): instances flattened as the BVH
+//! flattens them, cells sized from the triangle count (about `lambda` triangles' worth of cells per
+//! triangle, shaped by the bounds' aspect), stored compactly (per-cell offsets into one flat list of
+//! triangle indices) and built in parallel. Rays walk the cells with the 3D-DDA of Amanatides and Woo,
+//! test each triangle once (a small per-ray mailbox) with the watertight test the BVH uses, and stop as
+//! soon as the closest hit lies in the cell being walked, so both backends return the same hits.
+//!
+//! Robustness: cell crossings are computed directly from the cell boundaries (never accumulated), the
+//! start cell is chosen consistently with those crossings, and every triangle is inserted into the
+//! cells its box overlaps after padding by a few float spacings of the scene's magnitude, which
+//! covers the rounding of the crossings and of the hit points.
+
+use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::Arc;
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use super::triangle::{self, RayShear};
+use super::Accel;
+use crate::geometry::{Aabb, Hit, Ray};
+use crate::scene::Scene;
+
+/// Cells per triangle the resolution aims at (measured: see `GridAccel::build_with`).
+pub const DEFAULT_LAMBDA: f32 = 3.0;
+/// Most cells along one axis.
+pub const MAX_CELLS_PER_AXIS: u32 = 512;
+/// Most cells in all (4 bytes of offsets each).
+pub const MAX_CELLS: usize = 1 << 24;
+/// Marks a triangle id whose material needs an alpha test.
+const ALPHA_BIT: u32 = 1 << 31;
+/// Slots of the per-ray mailbox (a direct-mapped cache of recently tested triangles).
+const MAILBOX: usize = 64;
+/// Triangles whose box spans more cells than this are checked against each cell's box by their plane.
+const PLANE_TEST_MIN_CELLS: usize = 2;
+
+/// Triangle identity: instance (top bit: alpha-tested) and primitive within its mesh.
+#[derive(Clone, Copy, Debug)]
+struct TriId {
+    inst: u32,
+    prim: u32,
+}
+
+pub struct GridAccel {
+    scene: Arc<Scene>,
+    /// World-space vertices, by triangle index.
+    tris: Vec<[Vec3; 3]>,
+    ids: Vec<TriId>,
+    /// Grid bounds (the triangles' bounds, padded).
+    min: Vec3,
+    max: Vec3,
+    res: [u32; 3],
+    cell_size: Vec3,
+    inv_cell_size: Vec3,
+    /// Padding added to every triangle box before insertion.
+    pad: f32,
+    /// Per cell (x fastest), the range `offsets[c]..offsets[c + 1]` of `refs`; `cells + 1` entries.
+    offsets: Vec<u32>,
+    /// Triangle indices of every cell, ascending within a cell.
+    refs: Vec<u32>,
+}
+
+impl GridAccel {
+    pub fn build(scene: Arc<Scene>) -> Self {
+        Self::build_with(scene, DEFAULT_LAMBDA)
+    }
+
+    /// Builds with `lambda` cells per triangle (before clamping). 2 to 4 is the usual sweet spot:
+    /// fewer cells hold more triangles each, more cells cost more steps and memory.
+    pub fn build_with(scene: Arc<Scene>, lambda: f32) -> Self {
+        let (tris, ids) = flatten(&scene);
+        let bounds = tris
+            .par_iter()
+            .map(|t| Aabb::from_points(*t))
+            .reduce(|| Aabb::EMPTY, Aabb::union);
+        if tris.is_empty() || bounds.is_empty() {
+            return Self {
+                scene,
+                tris,
+                ids,
+                min: Vec3::ZERO,
+                max: Vec3::ZERO,
+                res: [1; 3],
+                cell_size: Vec3::ZERO,
+                inv_cell_size: Vec3::ZERO,
+                pad: 0.0,
+                offsets: vec![0, 0],
+                refs: Vec::new(),
+            };
+        }
+        // Rounding of crossings and hit points is a few float spacings of the coordinates involved:
+        // the scene's own, and ray origins up to a scene diagonal away from it.
+        let magnitude =
+            bounds.min.abs().max(bounds.max.abs()).max_element() + bounds.extent().length();
+        let pad = 16.0 * f32::EPSILON * magnitude;
+        let min = bounds.min - Vec3::splat(pad);
+        let max = bounds.max + Vec3::splat(pad);
+        let extent = max - min;
+        let res = resolution(extent, tris.len(), lambda);
+        let resf = Vec3::new(res[0] as f32, res[1] as f32, res[2] as f32);
+        let cell_size = extent / resf;
+        let inv_cell_size = Vec3::select(extent.cmpgt(Vec3::ZERO), resf / extent, Vec3::ZERO);
+        let mut grid = Self {
+            scene,
+            tris,
+            ids,
+            min,
+            max,
+            res,
+            cell_size,
+            inv_cell_size,
+            pad,
+            offsets: Vec::new(),
+            refs: Vec::new(),
+        };
+        grid.fill();
+        grid
+    }
+
+    /// Count pass, prefix sum, fill pass, then each cell's list sorted (so the layout, and the order
+    /// in which ties are met, never depends on thread scheduling).
+    fn fill(&mut self) {
+        let cells = self.cell_count();
+        let counts: Vec<AtomicU32> = (0..cells).map(|_| AtomicU32::new(0)).collect();
+        self.tris.par_iter().for_each(|t| {
+            self.for_each_cell(t, |c| {
+                counts[c].fetch_add(1, Ordering::Relaxed);
+            })
+        });
+        let mut offsets = Vec::with_capacity(cells + 1);
+        let mut total = 0u64;
+        offsets.push(0u32);
+        for c in &counts {
+            total += c.load(Ordering::Relaxed) as u64;
+            offsets.push(u32::try_from(total).expect("grid: more than 2^32 cell entries"));
+        }
+        drop(counts);
+        let cursor: Vec<AtomicU32> = offsets[..cells]
+            .iter()
+            .map(|&o| AtomicU32::new(o))
+            .collect();
+        let refs: Vec<AtomicU32> = (0..total).map(|_| AtomicU32::new(0)).collect();
+        self.tris.par_iter().enumerate().for_each(|(i, t)| {
+            self.for_each_cell(t, |c| {
+                let k = cursor[c].fetch_add(1, Ordering::Relaxed);
+                refs[k as usize].store(i as u32, Ordering::Relaxed);
+            })
+        });
+        drop(cursor);
+        let mut refs: Vec<u32> = refs.into_iter().map(AtomicU32::into_inner).collect();
+        // Sort every cell's list, in blocks of cells (each block's entries are one contiguous run).
+        const BLOCK: usize = 4096;
+        let mut blocks = Vec::with_capacity(cells / BLOCK + 1);
+        let mut rest: &mut [u32] = &mut refs;
+        for c0 in (0..cells).step_by(BLOCK) {
+            let c1 = (c0 + BLOCK).min(cells);
+            let len = (offsets[c1] - offsets[c0]) as usize;
+            let (block, tail) = rest.split_at_mut(len);
+            blocks.push((c0, c1, block));
+            rest = tail;
+        }
+        blocks.into_par_iter().for_each(|(c0, c1, block)| {
+            let base = offsets[c0];
+            for c in c0..c1 {
+                let (s, e) = (
+                    (offsets[c] - base) as usize,
+                    (offsets[c + 1] - base) as usize,
+                );
+                block[s..e].sort_unstable();
+            }
+        });
+        self.offsets = offsets;
+        self.refs = refs;
+    }
+
+    /// Calls `f` with every cell that the padded box of `t` overlaps and, for triangles spanning
+    /// several cells, whose padded box the triangle's plane passes through.
+    #[inline]
+    fn for_each_cell(&self, t: &[Vec3; 3], mut f: impl FnMut(usize)) {
+        let b = Aabb::from_points(*t);
+        let pad = Vec3::splat(self.pad);
+        let lo = self.cell_of(b.min - pad);
+        let hi = self.cell_of(b.max + pad);
+        let span = (hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
+        let [nx, ny, _] = self.res.map(|r| r as usize);
+        // The plane test, conservative: a margin far above the rounding of the normal and distance.
+        let e1 = t[1] - t[0];
+        let e2 = t[2] - t[0];
+        let n = e1.cross(e2);
+        let n_abs = n.abs();
+        let err = 1e-4 * e1.abs().max_element() * e2.abs().max_element();
+        let plane = span > PLANE_TEST_MIN_CELLS;
+        for z in lo[2]..=hi[2] {
+            for y in lo[1]..=hi[1] {
+                for x in lo[0]..=hi[0] {
+                    if plane {
+                        let cmin =
+                            self.min + Vec3::new(x as f32, y as f32, z as f32) * self.cell_size;
+                        let half = self.cell_size * 0.5 + pad;
+                        let center = cmin + self.cell_size * 0.5;
+                        let rel = center - t[0];
+                        let dist = n.dot(rel).abs();
+                        let reach = n_abs.dot(half);
+                        let margin = err * (rel.abs().max_element() + half.max_element());
+                        if dist > reach + margin {
+                            continue;
+                        }
+                    }
+                    f((z * ny + y) * nx + x);
+                }
+            }
+        }
+    }
+
+    /// The cell holding a point, clamped to the grid.
+    #[inline]
+    fn cell_of(&self, p: Vec3) -> [usize; 3] {
+        let q = ((p - self.min) * self.inv_cell_size).to_array();
+        std::array::from_fn(|a| (q[a].floor().max(0.0) as usize).min(self.res[a] as usize - 1))
+    }
+
+    /// Cells per axis.
+    pub fn resolution(&self) -> [u32; 3] {
+        self.res
+    }
+
+    pub fn cell_count(&self) -> usize {
+        self.res.iter().map(|&r| r as usize).product()
+    }
+
+    /// Triangle references over all cells (a triangle counts once per cell it is listed in).
+    pub fn entry_count(&self) -> usize {
+        self.refs.len()
+    }
+
+    /// Cells holding at least one triangle.
+    pub fn occupied_cells(&self) -> usize {
+        self.offsets.windows(2).filter(|w| w[1] > w[0]).count()
+    }
+
+    fn bytes(&self) -> usize {
+        self.tris.len() * std::mem::size_of::<[Vec3; 3]>()
+            + self.ids.len() * std::mem::size_of::<TriId>()
+            + self.offsets.len() * 4
+            + self.refs.len() * 4
+    }
+
+    /// Ray parameter where the ray crosses boundary `k` of `axis` (computed the same way everywhere).
+    #[inline(always)]
+    fn crossing(&self, axis: usize, k: i32, o: f32, inv: f32) -> f32 {
+        (self.min[axis] + k as f32 * self.cell_size[axis] - o) * inv
+    }
+
+    /// Walks the cells along the ray, keeping the closest accepted hit; with `any`, returns the first.
+    /// (Negated comparisons are deliberate: a NaN distance or limit ends the walk.)
+    #[inline(always)]
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    fn traverse(&self, ray: &Ray, any: bool) -> Option<Hit> {
+        if self.refs.is_empty() {
+            return None;
+        }
+        let o = ray.o.to_array();
+        let d = ray.d.to_array();
+        let inv = ray.d.recip().to_array();
+        // Clip the segment to the grid box (conservative, as the BVH's slab test). A NaN distance
+        // (0 * inf: a ray in a face plane, parallel to it) leaves the interval as it was.
+        let far_scale = 1.0 + 2.0 * gamma(3);
+        let (mut t0, mut t1) = (ray.t_min, ray.t_max);
+        for a in 0..3 {
+            let (near, far) = if inv[a] < 0.0 {
+                (self.max[a], self.min[a])
+            } else {
+                (self.min[a], self.max[a])
+            };
+            let tn = (near - o[a]) * inv[a];
+            let tf = (far - o[a]) * inv[a] * far_scale;
+            t0 = if tn > t0 { tn } else { t0 };
+            t1 = if tf < t1 { tf } else { t1 };
+        }
+        if !(t0 <= t1) {
+            return None;
+        }
+        // The start cell, chosen consistently with the crossings that the walk computes.
+        let mut cell = [0i32; 3];
+        let mut step = [0i32; 3];
+        let mut t_next = [f32::INFINITY; 3];
+        for a in 0..3 {
+            let n = self.res[a] as i32;
+            let p = o[a] + t0 * d[a];
+            let mut i = ((p - self.min[a]) * self.inv_cell_size[a])
+                .floor()
+                .clamp(0.0, (n - 1) as f32) as i32;
+            if !inv[a].is_finite() || d[a] == 0.0 {
+                // Parallel to this axis: the ray never leaves the slab it starts in.
+                cell[a] = i;
+                continue;
+            }
+            if d[a] > 0.0 {
+                while i + 1 < n && self.crossing(a, i + 1, o[a], inv[a]) <= t0 {
+                    i += 1;
+                }
+                while i > 0 && self.crossing(a, i, o[a], inv[a]) > t0 {
+                    i -= 1;
+                }
+                step[a] = 1;
+                t_next[a] = self.crossing(a, i + 1, o[a], inv[a]);
+            } else {
+                while i > 0 && self.crossing(a, i, o[a], inv[a]) <= t0 {
+                    i -= 1;
+                }
+                while i + 1 < n && self.crossing(a, i + 1, o[a], inv[a]) > t0 {
+                    i += 1;
+                }
+                step[a] = -1;
+                t_next[a] = self.crossing(a, i, o[a], inv[a]);
+            }
+            cell[a] = i;
+        }
+        let [nx, ny, _] = self.res.map(|r| r as i32);
+        let sh = RayShear::new(ray.d);
+        let mut t_max = ray.t_max;
+        let mut best: Option<Hit> = None;
+        let mut mailbox = [u32::MAX; MAILBOX];
+        loop {
+            let c = ((cell[2] * ny + cell[1]) * nx + cell[0]) as usize;
+            let (s, e) = (self.offsets[c] as usize, self.offsets[c + 1] as usize);
+            for &id in &self.refs[s..e] {
+                let slot = id as usize % MAILBOX;
+                if mailbox[slot] == id {
+                    continue;
+                }
+                mailbox[slot] = id;
+                let [a, b, c] = self.tris[id as usize];
+                if let Some(h) = triangle::intersect(ray.o, &sh, a, b, c, ray.t_min, t_max) {
+                    let tid = self.ids[id as usize];
+                    let inst = tid.inst & !ALPHA_BIT;
+                    if tid.inst & ALPHA_BIT != 0
+                        && !self.scene.alpha_passes(inst, tid.prim, h.u, h.v, ray)
+                    {
+                        continue;
+                    }
+                    let hit = Hit {
+                        t: h.t,
+                        u: h.u,
+                        v: h.v,
+                        inst,
+                        prim: tid.prim,
+                    };
+                    if any {
+                        return Some(hit);
+                    }
+                    t_max = h.t;
+                    best = Some(hit);
+                }
+            }
+            // Leave through the nearest boundary; stop once no farther cell can hold a nearer hit.
+            let axis = if t_next[0] < t_next[1] {
+                if t_next[0] < t_next[2] {
+                    0
+                } else {
+                    2
+                }
+            } else if t_next[1] < t_next[2] {
+                1
+            } else {
+                2
+            };
+            let t_exit = t_next[axis];
+            if !(t_exit < t_max) || !(t_exit <= t1) || step[axis] == 0 {
+                return best;
+            }
+            cell[axis] += step[axis];
+            if cell[axis] < 0 || cell[axis] >= self.res[axis] as i32 {
+                return best;
+            }
+            let k = cell[axis] + (step[axis] > 0) as i32;
+            t_next[axis] = self.crossing(axis, k, o[axis], inv[axis]);
+        }
+    }
+}
+
+/// World-space triangles of every instance, with their identities (as the BVH flattens them).
+fn flatten(scene: &Scene) -> (Vec<[Vec3; 3]>, Vec<TriId>) {
+    let mut tris = Vec::with_capacity(scene.triangle_count());
+    let mut ids = Vec::with_capacity(tris.capacity());
+    for (i, inst) in scene.instances.iter().enumerate() {
+        let mesh = &scene.meshes[inst.mesh as usize];
+        let alpha = if scene.materials[mesh.material as usize].needs_alpha_test() {
+            ALPHA_BIT
+        } else {
+            0
+        };
+        let world: Vec<Vec3> = mesh
+            .positions
+            .par_iter()
+            .map(|&p| inst.to_world.transform_point3(p))
+            .collect();
+        tris.par_extend(
+            mesh.indices
+                .par_iter()
+                .map(|idx| idx.map(|k| world[k as usize])),
+        );
+        ids.extend((0..mesh.indices.len()).map(|p| TriId {
+            inst: i as u32 | alpha,
+            prim: p as u32,
+        }));
+    }
+    (tris, ids)
+}
+
+/// Cells per axis for `n` triangles in a box of `extent`: `extent_axis * (lambda n / volume)^(1/3)`,
+/// where axes too thin for one cell get one and the others share the density; clamped per axis and
+/// in total.
+fn resolution(extent: Vec3, n: usize, lambda: f32) -> [u32; 3] {
+    let e = extent.to_array().map(|x| x as f64);
+    let target = (lambda.max(1e-3) as f64 * n as f64).max(1.0);
+    let mut thin = e.map(|x| !(x > 0.0 && x.is_finite()));
+    let mut res = [1u32; 3];
+    for _ in 0..3 {
+        let dims = thin.iter().filter(|&&t| !t).count();
+        if dims == 0 {
+            break;
+        }
+        let volume: f64 = (0..3).filter(|&a| !thin[a]).map(|a| e[a]).product();
+        let density = (target / volume).powf(1.0 / dims as f64);
+        let mut changed = false;
+        for a in 0..3 {
+            if thin[a] {
+                res[a] = 1;
+                continue;
+            }
+            let cells = e[a] * density;
+            if cells < 1.0 {
+                thin[a] = true;
+                changed = true;
+            }
+            res[a] = cells.round().clamp(1.0, MAX_CELLS_PER_AXIS as f64) as u32;
+        }
+        if !changed {
+            break;
+        }
+    }
+    let total: f64 = res.iter().map(|&r| r as f64).product();
+    if total > MAX_CELLS as f64 {
+        let s = (MAX_CELLS as f64 / total).cbrt();
+        res = res.map(|r| ((r as f64 * s).floor() as u32).max(1));
+    }
+    res
+}
+
+/// gamma(n) of pbrt: a bound on the relative error of n floating-point operations.
+const fn gamma(n: i32) -> f32 {
+    let e = f32::EPSILON * 0.5 * n as f32;
+    e / (1.0 - e)
+}
+
+impl Accel for GridAccel {
+    fn name(&self) -> &'static str {
+        "grid"
+    }
+
+    fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        self.traverse(ray, false)
+    }
+
+    fn occluded(&self, ray: &Ray) -> bool {
+        self.traverse(ray, true).is_some()
+    }
+
+    fn memory_bytes(&self) -> usize {
+        self.bytes()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{generate, Instance, Material, Mesh};
+    use glam::Mat4;
+
+    /// A grid of n x n unit quads in the z = 0 plane.
+    fn quad_mesh(n: u32) -> Mesh {
+        let mut m = Mesh::default();
+        for y in 0..=n {
+            for x in 0..=n {
+                m.positions.push(Vec3::new(x as f32, y as f32, 0.0));
+                m.normals.push(Vec3::Z);
+            }
+        }
+        for y in 0..n {
+            for x in 0..n {
+                let i = y * (n + 1) + x;
+                m.indices.push([i, i + 1, i + n + 2]);
+                m.indices.push([i, i + n + 2, i + n + 1]);
+            }
+        }
+        m
+    }
+
+    /// An axis-aligned box of 12 triangles from `lo` to `hi`.
+    fn box_mesh(lo: Vec3, hi: Vec3) -> Mesh {
+        let mut m = Mesh::default();
+        for i in 0..8 {
+            m.positions.push(Vec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            ));
+            m.normals.push(Vec3::Z);
+        }
+        for [a, b, c, d] in [
+            [0, 1, 3, 2],
+            [4, 6, 7, 5],
+            [0, 4, 5, 1],
+            [2, 3, 7, 6],
+            [0, 2, 6, 4],
+            [1, 5, 7, 3],
+        ] {
+            m.indices.push([a, b, c]);
+            m.indices.push([a, c, d]);
+        }
+        m
+    }
+
+    fn scene(meshes: Vec<Mesh>, instances: Vec<Instance>) -> Arc<Scene> {
+        Arc::new(Scene {
+            meshes,
+            instances,
+            materials: vec![Material::default()],
+            ..Default::default()
+        })
+    }
+
+    /// Brute force over every triangle, the reference the grid must match exactly.
+    fn brute(s: &Scene, ray: &Ray) -> Option<(f32, u32, u32)> {
+        let sh = RayShear::new(ray.d);
+        let mut best: Option<(f32, u32, u32)> = None;
+        for (i, inst) in s.instances.iter().enumerate() {
+            let m = &s.meshes[inst.mesh as usize];
+            for p in 0..m.indices.len() as u32 {
+                let [a, b, c] = m.triangle(p).map(|v| inst.to_world.transform_point3(v));
+                let t_max = best.map_or(ray.t_max, |b| b.0);
+                if let Some(h) = triangle::intersect(ray.o, &sh, a, b, c, ray.t_min, t_max) {
+                    best = Some((h.t, i as u32, p));
+                }
+            }
+        }
+        best
+    }
+
+    fn rng(seed: u64) -> impl FnMut() -> f32 {
+        let mut s = seed;
+        move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / (1u64 << 24) as f32
+        }
+    }
+
+    /// The grid's answers for `ray` against brute force: same distance bits; the same triangle, or
+    /// another at exactly the same distance.
+    fn check(g: &GridAccel, s: &Scene, ray: &Ray) -> bool {
+        let want = brute(s, ray);
+        let got = g.intersect(ray);
+        match (got, want) {
+            (None, None) => {}
+            (Some(h), Some(w)) => assert_eq!(h.t.to_bits(), w.0.to_bits(), "ray {ray:?}"),
+            _ => panic!("ray {ray:?}: grid {got:?}, brute force {want:?}"),
+        }
+        assert_eq!(g.occluded(ray), want.is_some(), "occluded, ray {ray:?}");
+        want.is_some()
+    }
+
+    #[test]
+    fn matches_brute_force_on_random_rays() {
+        let s = scene(
+            vec![quad_mesh(40), generate::icosphere(3, 0.1)],
+            vec![
+                Instance::new(0, Mat4::IDENTITY),
+                Instance::new(
+                    0,
+                    Mat4::from_rotation_x(0.7) * Mat4::from_translation(Vec3::new(-5.0, 3.0, 4.0)),
+                ),
+                Instance::new(
+                    1,
+                    Mat4::from_translation(Vec3::new(20.0, 20.0, 3.0))
+                        * Mat4::from_scale(Vec3::splat(4.0)),
+                ),
+            ],
+        );
+        for lambda in [0.5, DEFAULT_LAMBDA, 8.0] {
+            let g = GridAccel::build_with(s.clone(), lambda);
+            assert!(g.cell_count() > 1);
+            let mut next = rng(0x1234_5678);
+            let mut hits = 0;
+            for _ in 0..10_000 {
+                let o = Vec3::new(
+                    next() * 50.0 - 5.0,
+                    next() * 50.0 - 5.0,
+                    20.0 * next() - 5.0,
+                );
+                let d = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize();
+                hits += check(&g, &s, &Ray::new(o, d)) as u32;
+            }
+            assert!(hits > 1000, "test rays should hit often, hit {hits}");
+        }
+    }
+
+    #[test]
+    fn axis_parallel_rays() {
+        let s = scene(
+            vec![quad_mesh(16), generate::icosphere(2, 0.0)],
+            vec![
+                Instance::new(0, Mat4::IDENTITY),
+                Instance::new(
+                    1,
+                    Mat4::from_translation(Vec3::new(8.0, 8.0, 2.0))
+                        * Mat4::from_scale(Vec3::splat(3.0)),
+                ),
+            ],
+        );
+        let g = GridAccel::build(s.clone());
+        // Through every vertex of the plane (cell corners of a flat grid), and along every axis
+        // from inside and outside, both signs, including -0.0 components.
+        for y in 0..=16 {
+            for x in 0..=16 {
+                let r = Ray::new(
+                    Vec3::new(x as f32, y as f32, 30.0),
+                    Vec3::new(-0.0, 0.0, -1.0),
+                );
+                assert!(check(&g, &s, &r));
+            }
+        }
+        let mut next = rng(99);
+        for _ in 0..3000 {
+            let o = Vec3::new(next() * 20.0 - 2.0, next() * 20.0 - 2.0, next() * 8.0 - 2.0);
+            for d in [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z] {
+                check(&g, &s, &Ray::new(o, d));
+            }
+            // Along the plane itself, and diagonals in axis planes (two zero components).
+            let d = Vec3::new(next() - 0.5, next() - 0.5, 0.0).normalize();
+            check(&g, &s, &Ray::new(Vec3::new(o.x, o.y, 0.0), d));
+            check(&g, &s, &Ray::new(o, d));
+        }
+    }
+
+    #[test]
+    fn empty_scene_and_segment_limits() {
+        let g = GridAccel::build(scene(vec![], vec![]));
+        assert!(g.intersect(&Ray::new(Vec3::ZERO, Vec3::Z)).is_none());
+        assert!(!g.occluded(&Ray::new(Vec3::ZERO, Vec3::Z)));
+        assert_eq!(g.entry_count(), 0);
+        let g = GridAccel::build(scene(
+            vec![Mesh::default()],
+            vec![Instance::new(0, Mat4::IDENTITY)],
+        ));
+        assert!(g.intersect(&Ray::new(Vec3::ZERO, Vec3::Z)).is_none());
+
+        let s = scene(vec![quad_mesh(8)], vec![Instance::new(0, Mat4::IDENTITY)]);
+        let g = GridAccel::build(s.clone());
+        assert_eq!(g.resolution()[2], 1, "a flat scene gets one cell across");
+        let down = Ray::new(Vec3::new(0.5, 0.3, 1.0), -Vec3::Z);
+        assert!((g.intersect(&down).unwrap().t - 1.0).abs() < 1e-6);
+        assert!(!g.occluded(&Ray::segment(down.o, down.d, 0.99)));
+        assert!(g.occluded(&Ray::segment(down.o, down.d, 1.01)));
+        assert!(g
+            .intersect(&Ray {
+                t_min: 1.01,
+                ..down
+            })
+            .is_none());
+        // Segments of rays running over many cells, against brute force.
+        let mut next = rng(7);
+        for _ in 0..5000 {
+            let o = Vec3::new(next() * 12.0 - 2.0, next() * 12.0 - 2.0, next() * 4.0 - 2.0);
+            let d = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize();
+            let (a, b) = (next() * 10.0, next() * 10.0);
+            let ray = Ray {
+                t_min: a.min(b),
+                t_max: a.max(b),
+                ..Ray::new(o, d)
+            };
+            check(&g, &s, &ray);
+        }
+        // Rays that are no rays: NaN and zero directions, NaN limits.
+        for ray in [
+            Ray::new(Vec3::new(1.0, 1.0, 1.0), Vec3::ZERO),
+            Ray::new(Vec3::new(1.0, 1.0, 1.0), Vec3::NAN),
+            Ray::segment(Vec3::new(1.0, 1.0, 1.0), -Vec3::Z, f32::NAN),
+        ] {
+            assert!(g.intersect(&ray).is_none());
+        }
+    }
+
+    #[test]
+    fn small_detailed_model_inside_a_large_room() {
+        // A 5k-triangle sphere of radius 0.01 in a room a thousand times larger: the cells are
+        // much larger than the sphere's triangles, which all crowd into a few cells.
+        let s = scene(
+            vec![
+                box_mesh(Vec3::splat(-10.0), Vec3::splat(10.0)),
+                generate::icosphere(4, 0.05),
+            ],
+            vec![
+                Instance::new(0, Mat4::IDENTITY),
+                Instance::new(
+                    1,
+                    Mat4::from_translation(Vec3::new(1.0, -2.0, 0.5))
+                        * Mat4::from_scale(Vec3::splat(0.01)),
+                ),
+            ],
+        );
+        let g = GridAccel::build(s.clone());
+        let mut next = rng(3);
+        let mut sphere_hits = 0;
+        for i in 0..20_000 {
+            let o = Vec3::new(
+                next() * 18.0 - 9.0,
+                next() * 18.0 - 9.0,
+                next() * 18.0 - 9.0,
+            );
+            let target = Vec3::new(1.0, -2.0, 0.5)
+                + 0.012 * Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5);
+            let d = if i % 2 == 0 {
+                (target - o).normalize()
+            } else {
+                Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize()
+            };
+            let ray = Ray::new(o, d);
+            assert!(check(&g, &s, &ray), "the room is closed: every ray hits");
+            sphere_hits += (g.intersect(&ray).unwrap().inst == 1) as u32;
+        }
+        assert!(sphere_hits > 5000, "{sphere_hits}");
+    }
+
+    #[test]
+    fn resolution_follows_count_and_aspect() {
+        assert_eq!(resolution(Vec3::ZERO, 100, 3.0), [1, 1, 1]);
+        let r = resolution(Vec3::new(4.0, 2.0, 1.0), 1000, 3.0);
+        let total: u32 = r.iter().product();
+        assert!(r[0] > r[1] && r[1] > r[2], "{r:?}");
+        assert!((1500..6000).contains(&total), "{r:?}");
+        // Flat and line-like boxes: the thin axes get one cell, the density goes to the others.
+        let r = resolution(Vec3::new(1.0, 1.0, 0.0), 1000, 3.0);
+        assert_eq!(r[2], 1);
+        assert!(r[0] > 40 && r[0] == r[1], "{r:?}");
+        let r = resolution(Vec3::new(10.0, 1e-7, 0.0), 1000, 3.0);
+        assert_eq!(r, [MAX_CELLS_PER_AXIS, 1, 1]);
+        // Caps: per axis and in total.
+        let r = resolution(Vec3::ONE, 1 << 30, 8.0);
+        assert!(r.iter().all(|&x| x <= MAX_CELLS_PER_AXIS));
+        assert!(r.iter().map(|&x| x as usize).product::<usize>() <= MAX_CELLS);
+    }
+}
