@@ -49,6 +49,7 @@ fn centre_radiance(scene: &Arc<Scene>, backend: Backend) -> Vec3 {
         spp: 4,
         max_depth: 2,
         seed: 3,
+        ..Default::default()
     };
     let img = common::render_with(scene, &camera, backend, &settings);
     img.get(2, 2).truncate()

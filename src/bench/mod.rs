@@ -1,4 +1,6 @@
-//! Benchmarks that glint runs on itself: ray throughput per backend (`rays`).
+//! Benchmarks that glint runs on itself: ray throughput per backend (`rays`), error against
+//! time per sampler and adaptive mode (`convergence`).
 //! Each measures on identical inputs and reports ratios from one run, since machines are noisy.
 
+pub mod convergence;
 pub mod rays;

@@ -14,6 +14,56 @@ pub enum BenchCommand {
     /// Ray throughput of each backend on the same rays: build time and memory, Mrays/s per thread
     /// count, agreement with Embree.
     Rays(RaysArgs),
+    /// Error against render time for each sampler and adaptive mode, against a cached converged
+    /// reference: CSV, log-log plot, fitted convergence slopes.
+    Convergence(ConvergenceArgs),
+}
+
+#[derive(clap::Args, Debug)]
+pub struct ConvergenceArgs {
+    /// A .gltf, .glb or .obj file.
+    pub input: PathBuf,
+    /// Output folder: reference EXR (reused when present), convergence.csv, summary.csv, convergence.png.
+    #[arg(long)]
+    pub out: PathBuf,
+    #[arg(long, default_value_t = 160)]
+    pub width: usize,
+    #[arg(long, default_value_t = 120)]
+    pub height: usize,
+    /// Largest sample count of the uniform ladder (1, 2, 4, ... up to this).
+    #[arg(long, default_value_t = 256)]
+    pub max_spp: u32,
+    /// Samples per pixel of the reference.
+    #[arg(long, default_value_t = 4096)]
+    pub ref_spp: u32,
+    #[arg(long, default_value_t = 5)]
+    pub max_depth: u32,
+    #[arg(long, value_enum, default_value_t = crate::film::filter::FilterKind::Box)]
+    pub filter: crate::film::filter::FilterKind,
+    #[arg(long)]
+    pub filter_radius: Option<f32>,
+    /// Samplers of the uniform ladders, comma separated.
+    #[arg(long, value_delimiter = ',', default_values_t = [crate::sample::SamplerKind::Random, crate::sample::SamplerKind::Stratified, crate::sample::SamplerKind::Sobol])]
+    pub samplers: Vec<crate::sample::SamplerKind>,
+    /// Targets of the variance-adaptive runs (relative RMS error per pixel), comma separated.
+    #[arg(long, value_delimiter = ',', default_values_t = [0.4f32, 0.2, 0.1, 0.05, 0.025])]
+    pub adaptive_targets: Vec<f32>,
+    /// Fewest samples a pixel of an adaptive run takes.
+    #[arg(long, default_value_t = 16)]
+    pub adaptive_min_spp: u32,
+    /// Most samples a pixel of an adaptive run takes.
+    #[arg(long, default_value_t = 1024)]
+    pub adaptive_max_spp: u32,
+    /// Contrast thresholds of the corner-subdivision runs, comma separated.
+    #[arg(long, value_delimiter = ',', default_values_t = [0.8f32, 0.4, 0.2, 0.1, 0.05])]
+    pub corner_targets: Vec<f32>,
+    #[arg(long, default_value_t = Backend::default_available())]
+    pub backend: Backend,
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Only the tables, no per-run log.
+    #[arg(short, long)]
+    pub quiet: bool,
 }
 
 #[derive(clap::Args, Debug)]
@@ -45,6 +95,33 @@ pub struct RaysArgs {
 
 pub fn run(cmd: BenchCommand) -> Result<()> {
     match cmd {
+        BenchCommand::Convergence(a) => {
+            use crate::bench::convergence::{self, ConvergenceConfig};
+            let mut ladder = vec![1u32];
+            while ladder.last().unwrap() * 2 <= a.max_spp.max(1) {
+                ladder.push(ladder.last().unwrap() * 2);
+            }
+            let config = ConvergenceConfig {
+                width: a.width.max(1),
+                height: a.height.max(1),
+                max_depth: a.max_depth,
+                seed: a.seed,
+                backend: a.backend,
+                filter: a.filter,
+                filter_radius: a.filter_radius,
+                ladder,
+                ref_spp: a.ref_spp.max(1),
+                samplers: a.samplers,
+                adaptive_targets: a.adaptive_targets,
+                adaptive_min_spp: a.adaptive_min_spp.max(1),
+                adaptive_max_spp: a.adaptive_max_spp,
+                corner_targets: a.corner_targets,
+                ..Default::default()
+            };
+            let report = convergence::run(&a.input, &a.out, &config, !a.quiet)?;
+            print!("{}", report.table());
+            Ok(())
+        }
         BenchCommand::Rays(a) => {
             let config = RaysConfig {
                 backends: if a.backend.is_empty() {

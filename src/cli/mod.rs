@@ -157,7 +157,9 @@ pub fn parse_duration(s: &str) -> Result<std::time::Duration, String> {
     };
     match num.trim().parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(std::time::Duration::from_secs_f64(v * scale)),
-        _ => Err(format!("'{s}': expected a positive duration such as 30s, 2m or 500ms")),
+        _ => Err(format!(
+            "'{s}': expected a positive duration such as 30s, 2m or 500ms"
+        )),
     }
 }
 
@@ -301,6 +303,9 @@ fn render_command(args: RenderArgs) -> Result<()> {
     }
     // Fail on a bad output name before spending time on the render.
     film::Format::from_path(&args.output)?;
+    if let Some(map) = &args.spp_map {
+        film::Format::from_path(map)?;
+    }
     if let Some(parent) = args.output.parent().filter(|p| !p.as_os_str().is_empty()) {
         if !parent.is_dir() {
             bail!("{}: output folder does not exist", parent.display());
@@ -372,12 +377,22 @@ fn render_command(args: RenderArgs) -> Result<()> {
             film::Format::Png => 1.0 / stats.max_spp.max(1) as f32,
         };
         let values: Vec<f32> = out.spp.iter().map(|&n| n as f32 * scale).collect();
-        film::write(&film::Image::from_scalars(args.width, args.height, &values), path, 0.0)?;
+        film::write(
+            &film::Image::from_scalars(args.width, args.height, &values),
+            path,
+            0.0,
+        )?;
     }
     let spp_text = if stats.min_spp == stats.max_spp {
         format!("{}", stats.max_spp)
     } else {
-        format!("{:.1} (min {}, max {}, {} rounds)", out.mean_spp(), stats.min_spp, stats.max_spp, stats.rounds)
+        format!(
+            "{:.1} (min {}, max {}, {} rounds)",
+            out.mean_spp(),
+            stats.min_spp,
+            stats.max_spp,
+            stats.rounds
+        )
     };
     if !args.quiet {
         eprintln!(

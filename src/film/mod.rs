@@ -1,6 +1,8 @@
 //! The film: a linear RGBA float image that the integrator fills, and its output as PNG or EXR.
 //! Files are written to a temporary name beside the target and renamed, so no half image is ever left.
 
+pub mod filter;
+
 use std::fs;
 use std::path::{Path, PathBuf};
 
@@ -52,6 +54,72 @@ impl Image {
 
     pub fn has_non_finite(&self) -> bool {
         self.pixels.iter().any(|p| !p.is_finite())
+    }
+
+    /// Root mean squared error of RGB against a reference of the same size.
+    pub fn rmse(&self, reference: &Image) -> f64 {
+        assert_eq!(
+            (self.width, self.height),
+            (reference.width, reference.height)
+        );
+        let s: f64 = self
+            .pixels
+            .iter()
+            .zip(&reference.pixels)
+            .map(|(a, b)| {
+                let d = (*a - *b).truncate().as_dvec3();
+                d.length_squared()
+            })
+            .sum();
+        (s / (3 * self.pixels.len().max(1)) as f64).sqrt()
+    }
+
+    /// pbrt's relative MSE of RGB: mean of (x - ref)^2 / (ref^2 + 0.01).
+    pub fn rel_mse(&self, reference: &Image) -> f64 {
+        assert_eq!(
+            (self.width, self.height),
+            (reference.width, reference.height)
+        );
+        let mut s = 0.0f64;
+        for (a, b) in self.pixels.iter().zip(&reference.pixels) {
+            for c in 0..3 {
+                let (x, r) = (a[c] as f64, b[c] as f64);
+                s += (x - r) * (x - r) / (r * r + 0.01);
+            }
+        }
+        s / (3 * self.pixels.len().max(1)) as f64
+    }
+
+    /// Per-pixel squared RGB errors against a reference: (absolute, relative as in `rel_mse`), each
+    /// the mean over the three channels.
+    pub fn pixel_errors(&self, reference: &Image) -> Vec<(f64, f64)> {
+        assert_eq!(
+            (self.width, self.height),
+            (reference.width, reference.height)
+        );
+        self.pixels
+            .iter()
+            .zip(&reference.pixels)
+            .map(|(a, b)| {
+                let (mut abs, mut rel) = (0.0, 0.0);
+                for c in 0..3 {
+                    let (x, r) = (a[c] as f64, b[c] as f64);
+                    abs += (x - r) * (x - r) / 3.0;
+                    rel += (x - r) * (x - r) / (r * r + 0.01) / 3.0;
+                }
+                (abs, rel)
+            })
+            .collect()
+    }
+
+    /// A grey image of per-pixel values (e.g. sample counts), for writing as an AOV.
+    pub fn from_scalars(width: usize, height: usize, values: &[f32]) -> Image {
+        assert_eq!(values.len(), width * height);
+        Image {
+            width,
+            height,
+            pixels: values.iter().map(|&v| Vec4::new(v, v, v, 1.0)).collect(),
+        }
     }
 }
 

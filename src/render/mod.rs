@@ -9,9 +9,9 @@ pub mod offset;
 pub mod surface;
 
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
-use glam::{Vec2, Vec4};
+use glam::{DVec4, Vec2, Vec4};
 use indicatif::ProgressBar;
 use rayon::prelude::*;
 
@@ -19,21 +19,64 @@ pub use camera::RayCamera;
 pub use integrator::Integrator;
 
 use crate::accel::Accel;
+use crate::film::filter::{Filter, FilterKind};
 use crate::film::Image;
-use crate::sample::{Dim, RandomSampler, Sampler};
+use crate::sample::{AnySampler, Dim, Sampler, SamplerKind};
 use crate::scene::{Camera, Scene};
 
 /// Tile edge in pixels: small enough to balance load, big enough to amortise per-tile setup.
 const TILE: usize = 16;
 
+/// How samples are spread over the pixels.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum AdaptiveMode {
+    /// `spp` samples in every pixel (or rounds until `time_budget` is spent).
+    #[default]
+    Off,
+    /// Rounds of growing sample counts; a pixel stops once its estimated relative error (from two
+    /// interleaved half buffers, Dammertz et al. 2010, over its 3x3 neighbourhood) is under the
+    /// target, and otherwise gets the samples that the 1/sqrt(n) law predicts it needs (at most twice
+    /// what it has).
+    Variance,
+    /// Whitted-style image-space supersampling: sample the corners of the pixel, subdivide where
+    /// they differ beyond the target contrast, recursively (box filter, no jitter).
+    Corners,
+}
+
+impl std::fmt::Display for AdaptiveMode {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            AdaptiveMode::Off => "off",
+            AdaptiveMode::Variance => "variance",
+            AdaptiveMode::Corners => "corners",
+        })
+    }
+}
+
 #[derive(Clone, Debug)]
 pub struct RenderSettings {
     pub width: usize,
     pub height: usize,
+    /// Samples per pixel when not adaptive and without a time budget.
     pub spp: u32,
     /// Bounces after the camera ray (1 = direct light only).
     pub max_depth: u32,
     pub seed: u64,
+    pub sampler: SamplerKind,
+    pub filter: FilterKind,
+    /// Filter radius in pixels (default: the filter's own).
+    pub filter_radius: Option<f32>,
+    pub adaptive: AdaptiveMode,
+    /// Adaptive stopping threshold: the relative RMS error per pixel (`variance`), or the corner
+    /// contrast (`corners`).
+    pub target_error: f32,
+    /// No pixel stops before this many samples (adaptive modes).
+    pub min_spp: u32,
+    /// No pixel takes more than this many samples (adaptive modes).
+    pub max_spp: u32,
+    /// Render in rounds until this much time is spent (then `spp` is ignored; the result depends on
+    /// the machine's speed, so it is not reproducible).
+    pub time_budget: Option<Duration>,
 }
 
 impl Default for RenderSettings {
@@ -44,6 +87,14 @@ impl Default for RenderSettings {
             spp: 16,
             max_depth: 5,
             seed: 0,
+            sampler: SamplerKind::default(),
+            filter: FilterKind::default(),
+            filter_radius: None,
+            adaptive: AdaptiveMode::Off,
+            target_error: 0.01,
+            min_spp: 16,
+            max_spp: 1024,
+            time_budget: None,
         }
     }
 }
@@ -52,6 +103,13 @@ impl Default for RenderSettings {
 pub struct RenderStats {
     pub rays: u64,
     pub seconds: f64,
+    /// Camera paths traced (all pixels).
+    pub samples: u64,
+    /// Fewest and most samples any pixel took.
+    pub min_spp: u32,
+    pub max_spp: u32,
+    /// Sampling rounds (1 unless adaptive or time-budgeted).
+    pub rounds: u32,
 }
 
 impl RenderStats {
@@ -60,7 +118,21 @@ impl RenderStats {
     }
 }
 
-/// Renders the scene through `camera` into a linear RGBA image (box-filtered pixel samples).
+/// The image with what it took: statistics and the samples each pixel took (row-major).
+#[derive(Clone, Debug)]
+pub struct RenderOutput {
+    pub image: Image,
+    pub stats: RenderStats,
+    pub spp: Vec<u32>,
+}
+
+impl RenderOutput {
+    pub fn mean_spp(&self) -> f64 {
+        self.stats.samples as f64 / self.spp.len().max(1) as f64
+    }
+}
+
+/// Renders the scene through `camera` into a linear RGBA image.
 pub fn render(
     scene: &Scene,
     accel: &dyn Accel,
@@ -68,54 +140,400 @@ pub fn render(
     settings: &RenderSettings,
     progress: &ProgressBar,
 ) -> (Image, RenderStats) {
+    let out = render_full(scene, accel, camera, settings, progress);
+    (out.image, out.stats)
+}
+
+/// Weighted sums of one pixel: all its samples, and the even-numbered half (for error estimates).
+#[derive(Clone, Copy, Debug, Default)]
+struct Acc {
+    sum: DVec4,
+    w: f64,
+    half: DVec4,
+    half_w: f64,
+    n: u32,
+}
+
+impl Acc {
+    fn value(&self) -> DVec4 {
+        if self.w != 0.0 {
+            self.sum / self.w
+        } else {
+            DVec4::ZERO
+        }
+    }
+    fn half_value(&self) -> DVec4 {
+        if self.half_w != 0.0 {
+            self.half / self.half_w
+        } else {
+            DVec4::ZERO
+        }
+    }
+    /// Squared relative error estimate of the pixel, summed over RGB: (I - A)^2 / (I^2 + 0.01).
+    fn rel_err2(&self) -> f64 {
+        let (i, a) = (self.value(), self.half_value());
+        (0..3)
+            .map(|c| (i[c] - a[c]) * (i[c] - a[c]) / (i[c] * i[c] + 0.01))
+            .sum()
+    }
+}
+
+struct Tile {
+    x0: usize,
+    y0: usize,
+    x1: usize,
+    px: Vec<Acc>,
+}
+
+struct Ctx<'a> {
+    integrator: Integrator<'a>,
+    cam: RayCamera,
+    filter: Filter,
+    settings: &'a RenderSettings,
+    pass: u32,
+}
+
+impl Ctx<'_> {
+    /// Takes samples `acc.n .. to` of pixel (x, y); returns the rays traced.
+    fn sample_pixel(
+        &self,
+        sampler: &mut AnySampler,
+        x: usize,
+        y: usize,
+        to: u32,
+        acc: &mut Acc,
+    ) -> u64 {
+        let mut rays = 0u64;
+        for i in acc.n..to {
+            sampler.start(x as u32, y as u32, i);
+            let (offset, w) = self.filter.sample(sampler.get_2d(Dim::Pixel, 0));
+            let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
+            let r = self.integrator.li(self.cam.ray(film), sampler);
+            rays += r.rays as u64;
+            // A non-finite sample would poison the pixel: count it as black.
+            let v = if r.radiance.is_finite() {
+                r.radiance.as_dvec4() * w as f64
+            } else {
+                DVec4::ZERO
+            };
+            acc.sum += v;
+            acc.w += w as f64;
+            if i % 2 == 0 {
+                acc.half += v;
+                acc.half_w += w as f64;
+            }
+        }
+        acc.n = acc.n.max(to);
+        rays
+    }
+
+    /// Whitted-style adaptive supersampling of one pixel over its corners; returns rays traced.
+    fn corners_pixel(&self, sampler: &mut AnySampler, x: usize, y: usize, acc: &mut Acc) -> u64 {
+        let s = self.settings;
+        // Deepest level L: (2^L + 1)^2 corner samples at most max_spp; at least the level whose
+        // grid has min_spp corners.
+        let mut max_level = 0u32;
+        while max_level < 8 && ((2u64 << max_level) + 1).pow(2) <= s.max_spp.max(4) as u64 {
+            max_level += 1;
+        }
+        let mut min_level = 0u32;
+        while min_level < max_level && ((1u64 << min_level) + 1).pow(2) < s.min_spp as u64 {
+            min_level += 1;
+        }
+        let g = 1usize << max_level;
+        let mut cache: Vec<Option<Vec4>> = vec![None; (g + 1) * (g + 1)];
+        let mut state = CornerState {
+            next: 0,
+            rays: 0,
+            cache: &mut cache,
+            g,
+        };
+        let v = self.quad(sampler, x, y, 0, 0, g, 0, min_level, max_level, &mut state);
+        acc.sum = v.as_dvec4();
+        acc.w = 1.0;
+        acc.half = acc.sum;
+        acc.half_w = 1.0;
+        acc.n = state.next;
+        state.rays
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn quad(
+        &self,
+        sampler: &mut AnySampler,
+        x: usize,
+        y: usize,
+        ix: usize,
+        iy: usize,
+        size: usize,
+        level: u32,
+        min_level: u32,
+        max_level: u32,
+        st: &mut CornerState,
+    ) -> Vec4 {
+        let corners = [
+            (ix, iy),
+            (ix + size, iy),
+            (ix, iy + size),
+            (ix + size, iy + size),
+        ]
+        .map(|(cx, cy)| self.corner(sampler, x, y, cx, cy, st));
+        let subdivide = level < max_level
+            && (level < min_level || contrast(&corners) > self.settings.target_error);
+        if subdivide {
+            let h = size / 2;
+            let mut sum = Vec4::ZERO;
+            for (dx, dy) in [(0, 0), (h, 0), (0, h), (h, h)] {
+                sum += self.quad(
+                    sampler,
+                    x,
+                    y,
+                    ix + dx,
+                    iy + dy,
+                    h,
+                    level + 1,
+                    min_level,
+                    max_level,
+                    st,
+                );
+            }
+            sum / 4.0
+        } else {
+            (corners[0] + corners[1] + corners[2] + corners[3]) / 4.0
+        }
+    }
+
+    fn corner(
+        &self,
+        sampler: &mut AnySampler,
+        x: usize,
+        y: usize,
+        cx: usize,
+        cy: usize,
+        st: &mut CornerState,
+    ) -> Vec4 {
+        let k = cy * (st.g + 1) + cx;
+        if let Some(v) = st.cache[k] {
+            return v;
+        }
+        sampler.start(x as u32, y as u32, st.next);
+        st.next += 1;
+        let film = Vec2::new(
+            x as f32 + cx as f32 / st.g as f32,
+            y as f32 + cy as f32 / st.g as f32,
+        );
+        let r = self.integrator.li(self.cam.ray(film), sampler);
+        st.rays += r.rays as u64;
+        let v = if r.radiance.is_finite() {
+            r.radiance
+        } else {
+            Vec4::ZERO
+        };
+        st.cache[k] = Some(v);
+        v
+    }
+}
+
+struct CornerState<'c> {
+    next: u32,
+    rays: u64,
+    cache: &'c mut [Option<Vec4>],
+    g: usize,
+}
+
+/// Largest per-channel contrast (max - min) / (max + min) of the corner samples.
+fn contrast(c: &[Vec4; 4]) -> f32 {
+    (0..3)
+        .map(|k| {
+            let lo = c.iter().map(|v| v[k]).fold(f32::INFINITY, f32::min);
+            let hi = c.iter().map(|v| v[k]).fold(f32::NEG_INFINITY, f32::max);
+            (hi - lo) / (hi + lo + 1e-4)
+        })
+        .fold(0.0, f32::max)
+}
+
+/// Renders and also returns the samples each pixel took (for adaptive sampling and time budgets).
+pub fn render_full(
+    scene: &Scene,
+    accel: &dyn Accel,
+    camera: &Camera,
+    settings: &RenderSettings,
+    progress: &ProgressBar,
+) -> RenderOutput {
     let start = Instant::now();
-    let integrator = Integrator::new(scene, accel, settings.max_depth);
-    let cam = RayCamera::new(camera, settings.width, settings.height);
     let (w, h) = (settings.width, settings.height);
-    let tiles: Vec<(usize, usize)> = (0..h.div_ceil(TILE))
-        .flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE)))
+    let adaptive = settings.adaptive;
+    let min_spp = settings.min_spp.max(1);
+    let max_spp = settings.max_spp.max(min_spp);
+    // Samples per stratified pass: what the first round takes.
+    let first = match (adaptive, settings.time_budget) {
+        (AdaptiveMode::Variance, _) => min_spp,
+        (AdaptiveMode::Off, Some(_)) => 1,
+        _ => settings.spp.max(1),
+    };
+    let pass = match (adaptive, settings.time_budget) {
+        (AdaptiveMode::Off, Some(_)) => 16,
+        _ => first,
+    };
+    let ctx = Ctx {
+        integrator: Integrator::new(scene, accel, settings.max_depth),
+        cam: RayCamera::new(camera, w, h),
+        filter: Filter::new(settings.filter, settings.filter_radius),
+        settings,
+        pass,
+    };
+    // Rounds that sample only some pixels balance better over smaller tiles.
+    let edge = if adaptive == AdaptiveMode::Variance || settings.time_budget.is_some() {
+        TILE / 2
+    } else {
+        TILE
+    };
+    let mut tiles: Vec<Tile> = (0..h.div_ceil(edge))
+        .flat_map(|ty| (0..w.div_ceil(edge)).map(move |tx| (tx * edge, ty * edge)))
+        .map(|(x0, y0)| {
+            let (x1, y1) = ((x0 + edge).min(w), (y0 + edge).min(h));
+            Tile {
+                x0,
+                y0,
+                x1,
+                px: vec![Acc::default(); (x1 - x0) * (y1 - y0)],
+            }
+        })
         .collect();
-    progress.set_length(tiles.len() as u64);
+    progress.set_length(0);
     let rays = AtomicU64::new(0);
-    let spp = settings.spp.max(1);
-    let rendered: Vec<((usize, usize), Vec<Vec4>)> = tiles
-        .par_iter()
-        .map(|&(x0, y0)| {
-            let mut sampler = RandomSampler::new(settings.seed);
-            let mut pixels = Vec::with_capacity(TILE * TILE);
+    // Per-pixel sample count wanted after the current round (row-major).
+    let mut target = vec![first; w * h];
+    let mut rounds = 0u32;
+    let render_start = Instant::now();
+    loop {
+        rounds += 1;
+        progress.inc_length(tiles.len() as u64);
+        tiles.par_iter_mut().for_each(|tile| {
+            let mut sampler = AnySampler::new(settings.sampler, settings.seed, ctx.pass);
             let mut tile_rays = 0u64;
-            for y in y0..(y0 + TILE).min(h) {
-                for x in x0..(x0 + TILE).min(w) {
-                    let mut sum = Vec4::ZERO;
-                    for i in 0..spp {
-                        sampler.start(x as u32, y as u32, i);
-                        let film = Vec2::new(x as f32, y as f32) + sampler.get_2d(Dim::Pixel, 0);
-                        let r = integrator.li(cam.ray(film), &mut sampler);
-                        // A non-finite sample would poison the pixel: count it as black.
-                        if r.radiance.is_finite() {
-                            sum += r.radiance;
-                        }
-                        tile_rays += r.rays as u64;
+            let tw = tile.x1 - tile.x0;
+            for (k, acc) in tile.px.iter_mut().enumerate() {
+                let (x, y) = (tile.x0 + k % tw, tile.y0 + k / tw);
+                tile_rays += if adaptive == AdaptiveMode::Corners {
+                    ctx.corners_pixel(&mut sampler, x, y, acc)
+                } else {
+                    let to = target[y * w + x];
+                    if to > acc.n {
+                        ctx.sample_pixel(&mut sampler, x, y, to, acc)
+                    } else {
+                        0
                     }
-                    pixels.push(sum / spp as f32);
-                }
+                };
             }
             rays.fetch_add(tile_rays, Ordering::Relaxed);
             progress.inc(1);
-            ((x0, y0), pixels)
-        })
-        .collect();
-    let mut image = Image::new(w, h);
-    for ((x0, y0), pixels) in rendered {
-        let tw = (x0 + TILE).min(w) - x0;
-        for (k, p) in pixels.into_iter().enumerate() {
-            image.pixels[(y0 + k / tw) * w + x0 + k % tw] = p;
+        });
+        if adaptive == AdaptiveMode::Corners {
+            break;
         }
+        // Plan the next round.
+        let mut counts = vec![0u32; w * h];
+        for t in &tiles {
+            let tw = t.x1 - t.x0;
+            for (k, a) in t.px.iter().enumerate() {
+                counts[(t.y0 + k / tw) * w + t.x0 + k % tw] = a.n;
+            }
+        }
+        let mut next: Vec<u32> = match adaptive {
+            AdaptiveMode::Variance => {
+                let err = error_map(&tiles, w, h);
+                let t2 = (settings.target_error as f64).powi(2);
+                counts
+                    .iter()
+                    .zip(&err)
+                    .map(|(&n, &e)| {
+                        if n < min_spp {
+                            min_spp
+                        } else if n < max_spp && e > t2 {
+                            // Error falls as 1/sqrt(n): aim at the samples that reach the
+                            // target, between +25% (few rounds) and doubling (little overshoot).
+                            let want = (n as f64 * e / t2).ceil() as u32;
+                            want.clamp(n + n.div_ceil(4), 2 * n).min(max_spp)
+                        } else {
+                            n
+                        }
+                    })
+                    .collect()
+            }
+            _ => match settings.time_budget {
+                Some(_) => counts.iter().map(|&n| 2 * n).collect(),
+                None => counts.clone(),
+            },
+        };
+        let mut needed: u64 = next.iter().zip(&counts).map(|(a, b)| (a - b) as u64).sum();
+        if let Some(budget) = settings.time_budget {
+            let spent = render_start.elapsed().as_secs_f64();
+            let done: u64 = counts.iter().map(|&n| n as u64).sum();
+            let per_sample = spent / done.max(1) as f64;
+            let left = budget.as_secs_f64() - start.elapsed().as_secs_f64();
+            let affordable = (left.max(0.0) / per_sample.max(1e-12) * 0.97) as u64;
+            if needed > affordable {
+                // Scale every pixel's increment down to what the remaining time buys.
+                let f = affordable as f64 / needed as f64;
+                for (t, &n) in next.iter_mut().zip(&counts) {
+                    *t = n + ((*t - n) as f64 * f) as u32;
+                }
+                needed = next.iter().zip(&counts).map(|(a, b)| (a - b) as u64).sum();
+            }
+        }
+        if needed == 0 {
+            break;
+        }
+        target = next;
     }
     progress.finish_and_clear();
+    let mut image = Image::new(w, h);
+    let mut spp = vec![0u32; w * h];
+    for t in &tiles {
+        let tw = t.x1 - t.x0;
+        for (k, a) in t.px.iter().enumerate() {
+            let i = (t.y0 + k / tw) * w + t.x0 + k % tw;
+            image.pixels[i] = a.value().as_vec4();
+            spp[i] = a.n;
+        }
+    }
     let stats = RenderStats {
         rays: rays.into_inner(),
         seconds: start.elapsed().as_secs_f64(),
+        samples: spp.iter().map(|&n| n as u64).sum(),
+        min_spp: spp.iter().copied().min().unwrap_or(0),
+        max_spp: spp.iter().copied().max().unwrap_or(0),
+        rounds,
     };
-    (image, stats)
+    RenderOutput { image, stats, spp }
+}
+
+/// Per-pixel squared relative error estimate, averaged over the pixel's 3x3 neighbourhood (so a
+/// pixel whose two half buffers agree by chance does not stop alone).
+fn error_map(tiles: &[Tile], w: usize, h: usize) -> Vec<f64> {
+    let mut e = vec![0.0f64; w * h];
+    for t in tiles {
+        let tw = t.x1 - t.x0;
+        for (k, a) in t.px.iter().enumerate() {
+            e[(t.y0 + k / tw) * w + t.x0 + k % tw] = a.rel_err2() / 3.0;
+        }
+    }
+    (0..w * h)
+        .into_par_iter()
+        .map(|i| {
+            let (x, y) = ((i % w) as isize, (i / w) as isize);
+            let (mut s, mut n) = (0.0, 0);
+            for dy in -1..=1 {
+                for dx in -1..=1 {
+                    let (u, v) = (x + dx, y + dy);
+                    if u >= 0 && v >= 0 && (u as usize) < w && (v as usize) < h {
+                        s += e[v as usize * w + u as usize];
+                        n += 1;
+                    }
+                }
+            }
+            s / n as f64
+        })
+        .collect()
 }

@@ -1,7 +1,17 @@
 //! Where every random number of a path comes from: a sampler addressed by named dimensions.
 //! A value depends only on (seed, pixel, sample index, dimension), never on threads or tile order.
+//!
+//! Three samplers share the `Sampler` trait: independent `random` values, `stratified` (jittered
+//! strata over the pixel's samples, every dimension stratified on its own and shuffled, padded as in
+//! pbrt), and `sobol` (Owen-scrambled Sobol points, Burley 2020, padded per dimension pair).
+
+mod sobol;
+mod stratified;
 
 use glam::Vec2;
+
+pub use sobol::{owen_scramble, sobol_u32, SobolSampler};
+pub use stratified::{permutation_element, StratifiedSampler};
 
 /// The named sampling dimensions of one path. Camera dimensions come once per path; the others once
 /// per bounce, so that bounce `k` of every path draws from the same dimension (what stratified and
@@ -104,6 +114,82 @@ impl Sampler for RandomSampler {
         let i = dim.index(bounce);
         Vec2::new(self.value(i), self.value(i + 1))
     }
+}
+
+/// Which sampler a render draws from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum SamplerKind {
+    /// Independent uniform values.
+    Random,
+    /// Jittered strata (N x M over the pixel, N*M in every other dimension), shuffled per dimension.
+    Stratified,
+    /// Owen-scrambled Sobol (0,2)-sequence points, shuffled per dimension pair.
+    #[default]
+    Sobol,
+}
+
+impl std::fmt::Display for SamplerKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            SamplerKind::Random => "random",
+            SamplerKind::Stratified => "stratified",
+            SamplerKind::Sobol => "sobol",
+        })
+    }
+}
+
+/// One of the samplers, chosen at run time (an enum, so calls dispatch without a box).
+#[derive(Clone, Debug)]
+pub enum AnySampler {
+    Random(RandomSampler),
+    Stratified(StratifiedSampler),
+    Sobol(SobolSampler),
+}
+
+impl AnySampler {
+    /// `spp` is the number of samples a pixel takes per pass (what the stratified sampler divides
+    /// into strata; later samples start new, independently shuffled passes).
+    pub fn new(kind: SamplerKind, seed: u64, spp: u32) -> Self {
+        match kind {
+            SamplerKind::Random => AnySampler::Random(RandomSampler::new(seed)),
+            SamplerKind::Stratified => AnySampler::Stratified(StratifiedSampler::new(seed, spp)),
+            SamplerKind::Sobol => AnySampler::Sobol(SobolSampler::new(seed)),
+        }
+    }
+}
+
+impl Sampler for AnySampler {
+    fn start(&mut self, x: u32, y: u32, index: u32) {
+        match self {
+            AnySampler::Random(s) => s.start(x, y, index),
+            AnySampler::Stratified(s) => s.start(x, y, index),
+            AnySampler::Sobol(s) => s.start(x, y, index),
+        }
+    }
+    fn get_1d(&mut self, dim: Dim, bounce: u32) -> f32 {
+        match self {
+            AnySampler::Random(s) => s.get_1d(dim, bounce),
+            AnySampler::Stratified(s) => s.get_1d(dim, bounce),
+            AnySampler::Sobol(s) => s.get_1d(dim, bounce),
+        }
+    }
+    fn get_2d(&mut self, dim: Dim, bounce: u32) -> Vec2 {
+        match self {
+            AnySampler::Random(s) => s.get_2d(dim, bounce),
+            AnySampler::Stratified(s) => s.get_2d(dim, bounce),
+            AnySampler::Sobol(s) => s.get_2d(dim, bounce),
+        }
+    }
+}
+
+/// A 64-bit key for (seed, pixel): what decorrelates pixels from each other.
+pub(crate) fn pixel_key(seed: u64, x: u32, y: u32) -> u64 {
+    mix64(seed ^ mix64(((x as u64) << 32 | y as u64) ^ 0x9E37_79B9_7F4A_7C15))
+}
+
+/// 24 random bits of a hash as a float in [0, 1).
+pub(crate) fn unit_float(h: u64) -> f32 {
+    (h >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
 }
 
 /// SplitMix64's finaliser: a bijective 64-bit mix with good avalanche.

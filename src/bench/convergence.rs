@@ -1,0 +1,635 @@
+//! `glint bench convergence`: error against run time for each sampler and adaptive mode.
+//!
+//! A converged reference (Sobol, many samples, an independent seed) is rendered once and cached as
+//! EXR in the output folder; then every mode renders a ladder of sample counts (or adaptive targets)
+//! and each run's render time, RMSE and relative MSE (pbrt's: mean of (x - ref)^2 / (ref^2 + 0.01))
+//! against the reference are recorded. Writes `convergence.csv`, `summary.csv` and a log-log plot
+//! `convergence.png`; the fitted slope of log error against log time per mode is the convergence
+//! rate (about -0.5 for RMSE of independent random samples).
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use anyhow::{Context, Result};
+use indicatif::ProgressBar;
+
+use crate::accel::{self, Backend};
+use crate::film::filter::FilterKind;
+use crate::film::{self, Image};
+use crate::render::{self, AdaptiveMode, RenderSettings};
+use crate::sample::SamplerKind;
+use crate::scene::{defaults, Camera, Scene};
+
+#[derive(Clone, Debug)]
+pub struct ConvergenceConfig {
+    pub width: usize,
+    pub height: usize,
+    pub max_depth: u32,
+    pub seed: u64,
+    pub backend: Backend,
+    pub filter: FilterKind,
+    pub filter_radius: Option<f32>,
+    /// Sample counts of the uniform runs.
+    pub ladder: Vec<u32>,
+    pub ref_spp: u32,
+    pub samplers: Vec<SamplerKind>,
+    /// Targets (relative RMS error per pixel) of the variance-adaptive runs (Sobol).
+    pub adaptive_targets: Vec<f32>,
+    pub adaptive_min_spp: u32,
+    pub adaptive_max_spp: u32,
+    /// Contrast thresholds of the corner-subdivision runs.
+    pub corner_targets: Vec<f32>,
+    pub corner_max_spp: u32,
+    /// Fraction of pixels with the largest errors left out of the trimmed metrics (fireflies, in a
+    /// run or in the reference, otherwise dominate a mean of squares).
+    pub trim: f64,
+}
+
+impl Default for ConvergenceConfig {
+    fn default() -> Self {
+        Self {
+            width: 160,
+            height: 120,
+            max_depth: 5,
+            seed: 1,
+            backend: Backend::default_available(),
+            filter: FilterKind::Box,
+            filter_radius: None,
+            ladder: (0..=8).map(|k| 1 << k).collect(),
+            ref_spp: 4096,
+            samplers: vec![
+                SamplerKind::Random,
+                SamplerKind::Stratified,
+                SamplerKind::Sobol,
+            ],
+            adaptive_targets: vec![0.4, 0.2, 0.1, 0.05, 0.025],
+            adaptive_min_spp: 16,
+            adaptive_max_spp: 1024,
+            corner_targets: vec![0.8, 0.4, 0.2, 0.1, 0.05],
+            corner_max_spp: 289,
+            trim: 0.001,
+        }
+    }
+}
+
+/// One render of the ladder.
+#[derive(Clone, Debug)]
+pub struct Run {
+    pub mode: String,
+    /// The ladder parameter: spp, or the adaptive target.
+    pub param: f64,
+    pub mean_spp: f64,
+    pub seconds: f64,
+    pub rmse: f64,
+    pub rel_mse: f64,
+    /// The same less the reference's estimated noise, with the `trim` fraction of pixels left out at
+    /// either end (what slopes and ratios use).
+    pub rmse_trim: f64,
+    pub rel_mse_trim: f64,
+}
+
+/// Mean of the values once the `trim` fraction of largest ones and as many of the smallest ones
+/// (pixels where the reference's own noise was large) are left out.
+fn trimmed_mean(mut v: Vec<f64>, trim: f64) -> f64 {
+    v.sort_by(|a, b| a.total_cmp(b));
+    let k = ((v.len() as f64 * trim).floor() as usize).min(v.len().saturating_sub(1) / 2);
+    let kept = &v[k..v.len() - k];
+    kept.iter().sum::<f64>() / kept.len().max(1) as f64
+}
+
+#[derive(Clone, Debug)]
+pub struct ModeSummary {
+    pub mode: String,
+    /// Least-squares slopes in log-log space.
+    pub slope_rmse_time: f64,
+    pub slope_relmse_time: f64,
+    pub slope_rmse_spp: f64,
+    /// Time this mode needs to reach the RMSE of `random` at its largest spp, over random's time.
+    pub time_ratio_rmse_vs_random: Option<f64>,
+    /// Time this mode needs to reach the relMSE of uniform `sobol` at its largest spp, over sobol's.
+    pub time_ratio_relmse_vs_sobol: Option<f64>,
+    /// The same on the plain metrics (no noise correction or trimming: outliers count).
+    pub slope_rmse_time_raw: f64,
+    pub slope_relmse_time_raw: f64,
+    pub time_ratio_rmse_vs_random_raw: Option<f64>,
+    pub time_ratio_relmse_vs_sobol_raw: Option<f64>,
+}
+
+pub struct Report {
+    pub scene: String,
+    pub reference: PathBuf,
+    pub runs: Vec<Run>,
+    pub summary: Vec<ModeSummary>,
+}
+
+/// Loads a model as `glint render` does by default: its first camera (or a framing one) and the
+/// default light rig when it has no lights.
+fn load(path: &Path, width: usize, height: usize) -> Result<(Arc<Scene>, Camera)> {
+    let mut scene = Scene::load(path)?;
+    let camera = scene.cameras.first().cloned().unwrap_or_else(|| {
+        defaults::frame_bounds(
+            &scene.bounds(),
+            defaults::default_view_direction(),
+            defaults::DEFAULT_FOV_DEG.to_radians(),
+            width as f32 / height as f32,
+        )
+    });
+    if !defaults::has_own_lights(&scene) {
+        scene.lights.extend(defaults::light_rig(&camera.to_world));
+    }
+    Ok((Arc::new(scene), camera))
+}
+
+pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool) -> Result<Report> {
+    std::fs::create_dir_all(out_dir).with_context(|| format!("creating {}", out_dir.display()))?;
+    let (scene, camera) = load(input, cfg.width, cfg.height)?;
+    let accel = accel::build(scene.clone(), cfg.backend)?;
+    let hidden = ProgressBar::hidden();
+    let base = RenderSettings {
+        width: cfg.width,
+        height: cfg.height,
+        max_depth: cfg.max_depth,
+        seed: cfg.seed,
+        filter: cfg.filter,
+        filter_radius: cfg.filter_radius,
+        ..Default::default()
+    };
+    let stem = input
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "scene".into());
+    let ref_name = |half: usize| {
+        format!(
+            "reference-{stem}-{}x{}-{}spp-{}{}-d{}-half{half}.exr",
+            cfg.width,
+            cfg.height,
+            cfg.ref_spp,
+            cfg.filter,
+            cfg.filter_radius
+                .map(|r| format!("{r}"))
+                .unwrap_or_default(),
+            cfg.max_depth
+        )
+    };
+    let ref_path = out_dir.join(ref_name(0));
+    // The reference is two independent halves (ref_spp / 2 each): their mean is the reference, and
+    // their difference estimates the reference's own noise, which is subtracted from each run's
+    // squared error (so a noisy reference does not flatten the curves into a floor).
+    let mut halves = Vec::new();
+    for half in 0..2u64 {
+        let path = out_dir.join(ref_name(half as usize));
+        let img = match film::read_exr(&path) {
+            Ok(img) if img.width == cfg.width && img.height == cfg.height => {
+                if verbose {
+                    eprintln!("reusing reference half {}", path.display());
+                }
+                img
+            }
+            _ => {
+                if verbose {
+                    eprintln!(
+                        "rendering reference half ({} spp, sobol) to {}",
+                        (cfg.ref_spp / 2).max(1),
+                        path.display()
+                    );
+                }
+                let s = RenderSettings {
+                    spp: (cfg.ref_spp / 2).max(1),
+                    sampler: SamplerKind::Sobol,
+                    // Independent of every ladder run's samples and of the other half.
+                    seed: cfg.seed ^ (0x5EED_F2EF + half),
+                    ..base.clone()
+                };
+                let (img, stats) = render::render(&scene, accel.as_ref(), &camera, &s, &hidden);
+                film::write(&img, &path, 0.0)?;
+                if verbose {
+                    eprintln!("  took {:.1} s", stats.seconds);
+                }
+                img
+            }
+        };
+        halves.push(img);
+    }
+    let mut reference = Image::new(cfg.width, cfg.height);
+    let mut ref_var = vec![[0.0f64; 3]; cfg.width * cfg.height];
+    for (i, p) in reference.pixels.iter_mut().enumerate() {
+        let (a, b) = (halves[0].pixels[i], halves[1].pixels[i]);
+        *p = (a + b) * 0.5;
+        for c in 0..3 {
+            let d = (a[c] - b[c]) as f64;
+            ref_var[i][c] = d * d / 4.0;
+        }
+    }
+
+    let mut runs = Vec::new();
+    let mut measure = |mode: String, param: f64, s: &RenderSettings| {
+        let out = render::render_full(&scene, accel.as_ref(), &camera, s, &hidden);
+        // Per pixel: squared error less the reference's estimated variance, absolute and relative.
+        let (mut abs, mut rel) = (Vec::new(), Vec::new());
+        for (i, (x, r)) in out.image.pixels.iter().zip(&reference.pixels).enumerate() {
+            let (mut ea, mut er) = (0.0, 0.0);
+            for c in 0..3 {
+                let (xv, rv) = (x[c] as f64, r[c] as f64);
+                let e = (xv - rv) * (xv - rv) - ref_var[i][c];
+                ea += e / 3.0;
+                er += e / (rv * rv + 0.01) / 3.0;
+            }
+            abs.push(ea);
+            rel.push(er);
+        }
+        let run = Run {
+            mode,
+            param,
+            mean_spp: out.mean_spp(),
+            seconds: out.stats.seconds,
+            rmse: out.image.rmse(&reference),
+            rel_mse: out.image.rel_mse(&reference),
+            rmse_trim: trimmed_mean(abs, cfg.trim).max(1e-12).sqrt(),
+            rel_mse_trim: trimmed_mean(rel, cfg.trim).max(1e-12),
+        };
+        if verbose {
+            eprintln!(
+                "  {:<18} {:>8} spp={:>8.1} t={:>8.3}s rmse={:.5} relmse={:.3e} trimmed {:.5} {:.3e}",
+                run.mode,
+                run.param,
+                run.mean_spp,
+                run.seconds,
+                run.rmse,
+                run.rel_mse,
+                run.rmse_trim,
+                run.rel_mse_trim
+            );
+        }
+        runs.push(run);
+    };
+    for &sampler in &cfg.samplers {
+        for &spp in &cfg.ladder {
+            let s = RenderSettings {
+                spp,
+                sampler,
+                ..base.clone()
+            };
+            measure(sampler.to_string(), spp as f64, &s);
+        }
+    }
+    for &t in &cfg.adaptive_targets {
+        let s = RenderSettings {
+            sampler: SamplerKind::Sobol,
+            adaptive: AdaptiveMode::Variance,
+            target_error: t,
+            min_spp: cfg.adaptive_min_spp,
+            max_spp: cfg.adaptive_max_spp,
+            ..base.clone()
+        };
+        measure("adaptive-variance".into(), short(t), &s);
+    }
+    for &t in &cfg.corner_targets {
+        let s = RenderSettings {
+            sampler: SamplerKind::Sobol,
+            adaptive: AdaptiveMode::Corners,
+            target_error: t,
+            min_spp: 4,
+            max_spp: cfg.corner_max_spp,
+            ..base.clone()
+        };
+        measure("adaptive-corners".into(), short(t), &s);
+    }
+
+    let summary = summarise(&runs);
+    let report = Report {
+        scene: input.display().to_string(),
+        reference: ref_path,
+        runs,
+        summary,
+    };
+    report.write_csv(
+        &out_dir.join("convergence.csv"),
+        &out_dir.join("summary.csv"),
+    )?;
+    report.plot(&out_dir.join("convergence.png"))?;
+    Ok(report)
+}
+
+fn modes(runs: &[Run]) -> Vec<String> {
+    let mut m: Vec<String> = Vec::new();
+    for r in runs {
+        if !m.contains(&r.mode) {
+            m.push(r.mode.clone());
+        }
+    }
+    m
+}
+
+/// Least-squares slope of log y against log x.
+pub fn fit_slope(points: &[(f64, f64)]) -> f64 {
+    let pts: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|(x, y)| *x > 0.0 && *y > 0.0)
+        .map(|(x, y)| (x.ln(), y.ln()))
+        .collect();
+    let n = pts.len() as f64;
+    if pts.len() < 2 {
+        return f64::NAN;
+    }
+    let (mx, my) = (
+        pts.iter().map(|p| p.0).sum::<f64>() / n,
+        pts.iter().map(|p| p.1).sum::<f64>() / n,
+    );
+    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    let sxx: f64 = pts.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
+    sxy / sxx
+}
+
+/// The time at which a mode's error curve (sorted by time) first reaches `target`: log-log
+/// interpolation between the bracketing runs, or extrapolation along the fitted slope past the last.
+fn time_to_reach(points: &[(f64, f64)], target: f64, slope: f64) -> Option<f64> {
+    let mut p: Vec<(f64, f64)> = points.to_vec();
+    p.sort_by(|a, b| a.0.total_cmp(&b.0));
+    if p.is_empty() {
+        return None;
+    }
+    if p[0].1 <= target {
+        return Some(p[0].0);
+    }
+    for w in p.windows(2) {
+        let ((t0, e0), (t1, e1)) = (w[0], w[1]);
+        if e1 <= target && e0 > target {
+            let f = (target.ln() - e0.ln()) / (e1.ln() - e0.ln());
+            return Some((t0.ln() + f * (t1.ln() - t0.ln())).exp());
+        }
+    }
+    let (tl, el) = *p.last().unwrap();
+    (slope < 0.0).then(|| tl * (target / el).powf(1.0 / slope))
+}
+
+fn summarise(runs: &[Run]) -> Vec<ModeSummary> {
+    let of = |m: &str| runs.iter().filter(|r| r.mode == m).collect::<Vec<_>>();
+    let series = |m: &str, f: &dyn Fn(&Run) -> f64| -> Vec<(f64, f64)> {
+        of(m).iter().map(|r| (r.seconds, f(r))).collect()
+    };
+    // Targets: the most accurate run of random (RMSE) and of uniform sobol (relMSE).
+    let best = |m: &str, f: &dyn Fn(&Run) -> f64| {
+        of(m)
+            .iter()
+            .max_by(|a, b| a.param.total_cmp(&b.param))
+            .map(|r| (r.seconds, f(r)))
+    };
+    let random_best = best("random", &|r| r.rmse_trim);
+    let sobol_best = best("sobol", &|r| r.rel_mse_trim);
+    let random_best_raw = best("random", &|r| r.rmse);
+    let sobol_best_raw = best("sobol", &|r| r.rel_mse);
+    modes(runs)
+        .into_iter()
+        .map(|m| {
+            let rm = series(&m, &|r| r.rmse_trim);
+            let rel = series(&m, &|r| r.rel_mse_trim);
+            let slope_rmse_time = fit_slope(&rm);
+            let slope_relmse_time = fit_slope(&rel);
+            let spp: Vec<(f64, f64)> = of(&m).iter().map(|r| (r.mean_spp, r.rmse_trim)).collect();
+            let rm_raw = series(&m, &|r| r.rmse);
+            let rel_raw = series(&m, &|r| r.rel_mse);
+            let slope_rmse_time_raw = fit_slope(&rm_raw);
+            let slope_relmse_raw = fit_slope(&rel_raw);
+            ModeSummary {
+                slope_rmse_time_raw,
+                slope_relmse_time_raw: slope_relmse_raw,
+                time_ratio_rmse_vs_random_raw: random_best_raw.and_then(|(t, e)| {
+                    time_to_reach(&rm_raw, e, slope_rmse_time_raw).map(|x| x / t)
+                }),
+                time_ratio_relmse_vs_sobol_raw: sobol_best_raw
+                    .and_then(|(t, e)| time_to_reach(&rel_raw, e, slope_relmse_raw).map(|x| x / t)),
+                time_ratio_rmse_vs_random: random_best
+                    .and_then(|(t, e)| time_to_reach(&rm, e, slope_rmse_time).map(|x| x / t)),
+                time_ratio_relmse_vs_sobol: sobol_best
+                    .and_then(|(t, e)| time_to_reach(&rel, e, slope_relmse_time).map(|x| x / t)),
+                mode: m,
+                slope_rmse_time,
+                slope_relmse_time,
+                slope_rmse_spp: fit_slope(&spp),
+            }
+        })
+        .collect()
+}
+
+fn opt(v: Option<f64>) -> String {
+    v.map(|x| format!("{x:.3}")).unwrap_or_else(|| "-".into())
+}
+
+impl Report {
+    pub fn table(&self) -> String {
+        let mut s = String::new();
+        let _ = writeln!(s, "{} (reference {})", self.scene, self.reference.display());
+        let _ = writeln!(
+            s,
+            "RMSE*, relMSE*: less the reference's own noise (from its two halves), 0.1% of pixels trimmed at each end"
+        );
+        let _ = writeln!(
+            s,
+            "{:<18} {:>8} {:>9} {:>9} {:>10} {:>11} {:>10} {:>11}",
+            "mode", "param", "mean spp", "time s", "RMSE", "relMSE", "RMSE*", "relMSE*"
+        );
+        for r in &self.runs {
+            let _ = writeln!(
+                s,
+                "{:<18} {:>8} {:>9.1} {:>9.3} {:>10.5} {:>11.3e} {:>10.5} {:>11.3e}",
+                r.mode,
+                r.param,
+                r.mean_spp,
+                r.seconds,
+                r.rmse,
+                r.rel_mse,
+                r.rmse_trim,
+                r.rel_mse_trim
+            );
+        }
+        let _ = writeln!(
+            s,
+            "\n{:<18} {:>13} {:>15} {:>15} {:>17} {:>18} {:>13} {:>17} {:>18}",
+            "mode",
+            "slope RMSE*/t",
+            "slope relMSE*/t",
+            "slope RMSE*/spp",
+            "t/t_random RMSE*",
+            "t/t_sobol relMSE*",
+            "slope RMSE/t",
+            "t/t_random RMSE",
+            "t/t_sobol relMSE"
+        );
+        for m in &self.summary {
+            let _ = writeln!(
+                s,
+                "{:<18} {:>13.3} {:>15.3} {:>15.3} {:>17} {:>18} {:>13.3} {:>17} {:>18}",
+                m.mode,
+                m.slope_rmse_time,
+                m.slope_relmse_time,
+                m.slope_rmse_spp,
+                opt(m.time_ratio_rmse_vs_random),
+                opt(m.time_ratio_relmse_vs_sobol),
+                m.slope_rmse_time_raw,
+                opt(m.time_ratio_rmse_vs_random_raw),
+                opt(m.time_ratio_relmse_vs_sobol_raw)
+            );
+        }
+        s
+    }
+
+    pub fn write_csv(&self, runs_path: &Path, summary_path: &Path) -> Result<()> {
+        let mut s = String::from(
+            "scene,mode,param,mean_spp,seconds,rmse,relmse,rmse_corrected,relmse_corrected,slope_rmse_time,slope_relmse_time,slope_rmse_spp\n",
+        );
+        for r in &self.runs {
+            let m = self.summary.iter().find(|m| m.mode == r.mode).unwrap();
+            let _ = writeln!(
+                s,
+                "{},{},{},{:.3},{:.6},{:.6e},{:.6e},{:.6e},{:.6e},{:.4},{:.4},{:.4}",
+                self.scene,
+                r.mode,
+                r.param,
+                r.mean_spp,
+                r.seconds,
+                r.rmse,
+                r.rel_mse,
+                r.rmse_trim,
+                r.rel_mse_trim,
+                m.slope_rmse_time,
+                m.slope_relmse_time,
+                m.slope_rmse_spp
+            );
+        }
+        std::fs::write(runs_path, s).with_context(|| format!("writing {}", runs_path.display()))?;
+        let mut s = String::from(
+            "scene,mode,slope_rmse_time,slope_relmse_time,slope_rmse_spp,time_ratio_rmse_vs_random,time_ratio_relmse_vs_sobol,slope_rmse_time_raw,time_ratio_rmse_vs_random_raw,time_ratio_relmse_vs_sobol_raw\n",
+        );
+        for m in &self.summary {
+            let _ = writeln!(
+                s,
+                "{},{},{:.4},{:.4},{:.4},{},{},{:.4},{},{}",
+                self.scene,
+                m.mode,
+                m.slope_rmse_time,
+                m.slope_relmse_time,
+                m.slope_rmse_spp,
+                opt(m.time_ratio_rmse_vs_random),
+                opt(m.time_ratio_relmse_vs_sobol),
+                m.slope_rmse_time_raw,
+                opt(m.time_ratio_rmse_vs_random_raw),
+                opt(m.time_ratio_relmse_vs_sobol_raw)
+            );
+        }
+        std::fs::write(summary_path, s)
+            .with_context(|| format!("writing {}", summary_path.display()))
+    }
+
+    /// Two log-log panels (RMSE and relMSE against seconds), one series per mode.
+    pub fn plot(&self, path: &Path) -> Result<()> {
+        use plotters::prelude::*;
+        static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSansMono.ttf");
+        // Registering twice is harmless; the font is bundled, so no system font library is needed.
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
+        let (w, h) = (1200u32, 520u32);
+        let mut buf = vec![0u8; (w * h * 3) as usize];
+        {
+            let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+            root.fill(&WHITE).map_err(|e| anyhow::anyhow!("{e}"))?;
+            let panels = root.split_evenly((1, 2));
+            let modes = modes(&self.runs);
+            let colors = [RED, BLUE, GREEN, MAGENTA, CYAN, BLACK];
+            for (panel, (name, f)) in panels.iter().zip([
+                ("RMSE", (|r: &Run| r.rmse) as fn(&Run) -> f64),
+                ("relMSE", |r: &Run| r.rel_mse),
+            ]) {
+                let pts: Vec<(f64, f64)> = self
+                    .runs
+                    .iter()
+                    .map(|r| (r.seconds.max(1e-4), f(r).max(1e-12)))
+                    .collect();
+                let (tmin, tmax) = pts
+                    .iter()
+                    .fold((f64::MAX, 0.0f64), |(a, b), p| (a.min(p.0), b.max(p.0)));
+                let (emin, emax) = pts
+                    .iter()
+                    .fold((f64::MAX, 0.0f64), |(a, b), p| (a.min(p.1), b.max(p.1)));
+                let mut chart = ChartBuilder::on(panel)
+                    .caption(
+                        format!("{name} vs render time (legend: fitted slope)"),
+                        ("sans-serif", 18),
+                    )
+                    .margin(12)
+                    .x_label_area_size(36)
+                    .y_label_area_size(70)
+                    .build_cartesian_2d(
+                        (tmin * 0.8..tmax * 1.25).log_scale(),
+                        (emin * 0.8..emax * 1.25).log_scale(),
+                    )
+                    .map_err(|e| anyhow::anyhow!("{e}"))?;
+                chart
+                    .configure_mesh()
+                    .x_desc("seconds")
+                    .y_desc(name)
+                    .y_label_formatter(&|v| format!("{v:.0e}"))
+                    .draw()
+                    .map_err(|e| anyhow::anyhow!("{e}"))?;
+                for (i, m) in modes.iter().enumerate() {
+                    let c = colors[i % colors.len()];
+                    let mut series: Vec<(f64, f64)> = self
+                        .runs
+                        .iter()
+                        .filter(|r| &r.mode == m)
+                        .map(|r| (r.seconds.max(1e-4), f(r).max(1e-12)))
+                        .collect();
+                    series.sort_by(|a, b| a.0.total_cmp(&b.0));
+                    let slope = self
+                        .summary
+                        .iter()
+                        .find(|s| &s.mode == m)
+                        .map(|s| {
+                            if name == "RMSE" {
+                                s.slope_rmse_time_raw
+                            } else {
+                                s.slope_relmse_time_raw
+                            }
+                        })
+                        .unwrap_or(f64::NAN);
+                    chart
+                        .draw_series(LineSeries::new(series.clone(), c.stroke_width(2)))
+                        .map_err(|e| anyhow::anyhow!("{e}"))?
+                        .label(format!("{m} ({slope:.2})"))
+                        .legend(move |(x, y)| {
+                            PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2))
+                        });
+                    chart
+                        .draw_series(series.iter().map(|&p| Circle::new(p, 3, c.filled())))
+                        .map_err(|e| anyhow::anyhow!("{e}"))?;
+                }
+                chart
+                    .configure_series_labels()
+                    .background_style(WHITE.mix(0.8))
+                    .border_style(BLACK)
+                    .position(SeriesLabelPosition::LowerLeft)
+                    .draw()
+                    .map_err(|e| anyhow::anyhow!("{e}"))?;
+            }
+            root.present().map_err(|e| anyhow::anyhow!("{e}"))?;
+        }
+        image::save_buffer_with_format(
+            path,
+            &buf,
+            w,
+            h,
+            image::ColorType::Rgb8,
+            image::ImageFormat::Png,
+        )
+        .with_context(|| format!("writing {}", path.display()))
+    }
+}
+
+/// Reads a reference image back (for callers that want to compare their own renders).
+pub fn read_reference(path: &Path) -> Result<Image> {
+    film::read_exr(path)
+}
+
+/// An f32 parameter as the f64 it was written as (0.4, not 0.4000000059604645).
+fn short(t: f32) -> f64 {
+    format!("{t}").parse().unwrap_or(t as f64)
+}

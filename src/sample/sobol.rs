@@ -1,0 +1,241 @@
+//! Owen-scrambled Sobol points (Burley 2020, "Practical Hash-based Owen Scrambling"): the first two
+//! Sobol dimensions (a (0,2)-sequence) with nested uniform scrambling by a hash, and for padding every
+//! named dimension (pair) takes its own shuffle of the sample index and its own scramble seeds, hashed
+//! from (seed, pixel, dimension), like pbrt's `PaddedSobolSampler`.
+
+use glam::Vec2;
+
+use super::{mix64, pixel_key, Dim, Sampler};
+
+/// Generator matrices (as direction numbers, most significant bit first) of Sobol dimensions 0 and 1.
+#[cfg(test)]
+const DIRECTIONS: [[u32; 32]; 2] = directions();
+
+#[cfg(test)]
+const fn directions() -> [[u32; 32]; 2] {
+    let mut d = [[0u32; 32]; 2];
+    let mut b = 0;
+    while b < 32 {
+        // Dimension 0: the van der Corput sequence (bit reversal).
+        d[0][b] = 1 << (31 - b);
+        // Dimension 1: primitive polynomial x + 1, m_k = 1: v_k = v_{k-1} ^ (v_{k-1} >> 1).
+        d[1][b] = if b == 0 {
+            1 << 31
+        } else {
+            d[1][b - 1] ^ (d[1][b - 1] >> 1)
+        };
+        b += 1;
+    }
+    d
+}
+
+/// The 32-bit value of Sobol point `index` in dimension `dim` (0 or 1), unscrambled, in closed
+/// form: dimension 0 is the bit reversal of the index; dimension 1's generator matrix is Pascal's
+/// triangle mod 2, so bit j of its reversed value is the parity of the index bits k with k ⊇ j
+/// (Lucas), a subset-sum transform of five masked shifts. (Shuffled indices use all 32 bits, so
+/// a loop over the direction numbers would cost 32 unpredictable branches per value.)
+pub fn sobol_u32(index: u32, dim: usize) -> u32 {
+    if dim == 0 {
+        index.reverse_bits()
+    } else {
+        pascal(index).reverse_bits()
+    }
+}
+
+/// The reversed Sobol dimension 1 value of `x`: bit j becomes the xor of bits k of x with k & j == j.
+fn pascal(mut x: u32) -> u32 {
+    x ^= (x >> 1) & 0x5555_5555;
+    x ^= (x >> 2) & 0x3333_3333;
+    x ^= (x >> 4) & 0x0F0F_0F0F;
+    x ^= (x >> 8) & 0x00FF_00FF;
+    x ^= (x >> 16) & 0x0000_FFFF;
+    x
+}
+
+/// The same values from the direction numbers, one bit at a time (the definition; for tests).
+#[cfg(test)]
+pub fn sobol_u32_reference(mut index: u32, dim: usize) -> u32 {
+    let mut x = 0;
+    let mut b = 0;
+    while index != 0 {
+        if index & 1 != 0 {
+            x ^= DIRECTIONS[dim][b];
+        }
+        index >>= 1;
+        b += 1;
+    }
+    x
+}
+
+/// Nested uniform (Owen) scrambling of a 32-bit fixed-point value: reverse the bits, apply a hash in
+/// which every bit depends only on lower bits (Laine-Karras style, with Vegdahl's constants), reverse back.
+pub fn owen_scramble(x: u32, seed: u32) -> u32 {
+    let mut v = x.reverse_bits();
+    v ^= v.wrapping_mul(0x3d20_adea);
+    v = v.wrapping_add(seed);
+    v = v.wrapping_mul((seed >> 16) | 1);
+    v ^= v.wrapping_mul(0x0552_6c56);
+    v ^= v.wrapping_mul(0x53a2_2864);
+    v.reverse_bits()
+}
+
+fn to_unit(x: u32) -> f32 {
+    (x >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
+}
+
+#[derive(Clone, Debug)]
+pub struct SobolSampler {
+    seed: u64,
+    pixel: u64,
+    index: u32,
+}
+
+impl SobolSampler {
+    pub fn new(seed: u64) -> Self {
+        Self {
+            seed,
+            pixel: 0,
+            index: 0,
+        }
+    }
+
+    /// Scrambled values of the shuffled point in Sobol dimensions 0 and 1 for flat dimension `d`.
+    fn point(&self, d: u32, both: bool) -> (u32, u32) {
+        let h = mix64(self.pixel ^ mix64(d as u64 + 0x6A09_E667_F3BC_C909));
+        let shuffled = owen_scramble(self.index, h as u32);
+        let x = owen_scramble(sobol_u32(shuffled, 0), (h >> 32) as u32);
+        let y = if both {
+            owen_scramble(sobol_u32(shuffled, 1), mix64(h) as u32)
+        } else {
+            0
+        };
+        (x, y)
+    }
+}
+
+impl Sampler for SobolSampler {
+    fn start(&mut self, x: u32, y: u32, index: u32) {
+        self.pixel = pixel_key(self.seed, x, y);
+        self.index = index;
+    }
+
+    fn get_1d(&mut self, dim: Dim, bounce: u32) -> f32 {
+        to_unit(self.point(dim.index(bounce), false).0)
+    }
+
+    fn get_2d(&mut self, dim: Dim, bounce: u32) -> Vec2 {
+        let (x, y) = self.point(dim.index(bounce), true);
+        Vec2::new(to_unit(x), to_unit(y))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::RandomSampler;
+    use super::*;
+
+    /// Exact star discrepancy of a 2D point set: the worst box [0,u) x [0,v) anchored at the origin,
+    /// over the corners the points define (open and closed boxes).
+    fn star_discrepancy(p: &[Vec2]) -> f64 {
+        let n = p.len() as f64;
+        let mut us: Vec<f64> = p.iter().map(|q| q.x as f64).collect();
+        let mut vs: Vec<f64> = p.iter().map(|q| q.y as f64).collect();
+        us.push(1.0);
+        vs.push(1.0);
+        let mut d: f64 = 0.0;
+        for &u in &us {
+            for &v in &vs {
+                let open = p
+                    .iter()
+                    .filter(|q| (q.x as f64) < u && (q.y as f64) < v)
+                    .count() as f64;
+                let closed = p
+                    .iter()
+                    .filter(|q| (q.x as f64) <= u && (q.y as f64) <= v)
+                    .count() as f64;
+                d = d.max(u * v - open / n).max(closed / n - u * v);
+            }
+        }
+        d
+    }
+
+    fn mean_discrepancy(s: &mut dyn Sampler, dim: Dim, bounce: u32) -> f64 {
+        let mut total = 0.0;
+        let pixels = 8;
+        for px in 0..pixels {
+            let pts: Vec<Vec2> = (0..64)
+                .map(|i| {
+                    s.start(px, 3 * px + 1, i);
+                    s.get_2d(dim, bounce)
+                })
+                .collect();
+            total += star_discrepancy(&pts);
+        }
+        total / pixels as f64
+    }
+
+    #[test]
+    fn sobol_has_lower_star_discrepancy_than_random() {
+        for (dim, bounce) in [(Dim::Pixel, 0), (Dim::Light, 2)] {
+            let sobol = mean_discrepancy(&mut SobolSampler::new(3), dim, bounce);
+            let random = mean_discrepancy(&mut RandomSampler::new(3), dim, bounce);
+            let strat = mean_discrepancy(
+                &mut super::super::StratifiedSampler::new(3, 64),
+                dim,
+                bounce,
+            );
+            assert!(
+                sobol < 0.5 * random,
+                "{dim:?}: sobol {sobol} random {random}"
+            );
+            assert!(
+                strat < random,
+                "{dim:?}: stratified {strat} random {random}"
+            );
+        }
+    }
+
+    #[test]
+    fn sobol_points_are_elementary_intervals() {
+        // A scrambled (0,2)-sequence: any 16 consecutive-from-zero points put one in each of the
+        // 16 cells of every 2^a x 2^b grid with a + b = 4.
+        let mut s = SobolSampler::new(11);
+        s.start(4, 5, 0);
+        let pts: Vec<Vec2> = (0..16)
+            .map(|i| {
+                s.start(4, 5, i);
+                s.get_2d(Dim::Bsdf, 1)
+            })
+            .collect();
+        for a in 0..=4u32 {
+            let (gx, gy) = (1u32 << a, 1u32 << (4 - a));
+            let mut cells = vec![0; 16];
+            for p in &pts {
+                cells[((p.y * gy as f32) as u32 * gx + (p.x * gx as f32) as u32) as usize] += 1;
+            }
+            assert!(cells.iter().all(|&c| c == 1), "{gx}x{gy}: {cells:?}");
+        }
+    }
+
+    #[test]
+    fn closed_form_matches_direction_numbers() {
+        let mut x = 12345u32;
+        for i in (0..4096u32).chain((0..4096).map(|_| {
+            x = x.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+            x
+        })) {
+            for d in 0..2 {
+                assert_eq!(sobol_u32(i, d), sobol_u32_reference(i, d), "{i} {d}");
+            }
+        }
+    }
+
+    #[test]
+    fn pixels_are_decorrelated() {
+        let mut s = SobolSampler::new(0);
+        s.start(0, 0, 0);
+        let a = s.get_2d(Dim::Pixel, 0);
+        s.start(1, 0, 0);
+        assert_ne!(a, s.get_2d(Dim::Pixel, 0));
+    }
+}
