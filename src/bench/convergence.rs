@@ -127,17 +127,8 @@ pub struct Report {
 /// default light rig when it has no lights.
 fn load(path: &Path, width: usize, height: usize) -> Result<(Arc<Scene>, Camera)> {
     let mut scene = Scene::load(path)?;
-    let camera = scene.cameras.first().cloned().unwrap_or_else(|| {
-        defaults::frame_bounds(
-            &scene.bounds(),
-            defaults::default_view_direction(),
-            defaults::DEFAULT_FOV_DEG.to_radians(),
-            width as f32 / height as f32,
-        )
-    });
-    if !defaults::has_own_lights(&scene) {
-        scene.lights.extend(defaults::light_rig(&camera.to_world));
-    }
+    let camera = defaults::default_camera(&scene, width as f32 / height as f32);
+    defaults::light_if_unlit(&mut scene, &camera.to_world);
     Ok((Arc::new(scene), camera))
 }
 

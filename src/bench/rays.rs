@@ -116,18 +116,9 @@ fn unit(h: u64) -> f32 {
 /// Camera rays through pixel centres, then from each first hit (found with `accel`) a shadow ray to a
 /// sampled light and a cosine-distributed diffuse ray.
 pub fn generate_rays(scene: &Scene, accel: &dyn Accel, width: usize, height: usize) -> RaySets {
-    let camera = scene.cameras.first().cloned().unwrap_or_else(|| {
-        defaults::frame_bounds(
-            &scene.bounds(),
-            defaults::default_view_direction(),
-            defaults::DEFAULT_FOV_DEG.to_radians(),
-            width as f32 / height as f32,
-        )
-    });
+    let camera = defaults::default_camera(scene, width as f32 / height as f32);
     let mut lit = scene.clone();
-    if !defaults::has_own_lights(scene) {
-        lit.lights.extend(defaults::light_rig(&camera.to_world));
-    }
+    defaults::light_if_unlit(&mut lit, &camera.to_world);
     let lights = LightSet::new(&lit);
     let cam = RayCamera::new(&camera, width, height);
     let primary: Vec<Ray> = (0..width * height)

@@ -59,6 +59,31 @@ pub enum DefaultLights {
     Off,
 }
 
+impl DefaultLights {
+    /// Whether the rig goes into this scene.
+    pub fn wanted(self, scene: &Scene) -> bool {
+        match self {
+            DefaultLights::On => true,
+            DefaultLights::Off => false,
+            DefaultLights::Auto => !defaults::has_own_lights(scene),
+        }
+    }
+}
+
+/// A progress bar on stderr with `template`, hidden when `quiet` or when stderr is not a terminal.
+pub(crate) fn progress_bar(quiet: bool, template: &str) -> ProgressBar {
+    if quiet || !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(0);
+    bar.set_style(
+        ProgressStyle::with_template(template)
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    bar
+}
+
 #[derive(clap::Args, Debug)]
 pub struct RenderArgs {
     /// A .gltf, .glb or .obj file.
@@ -322,12 +347,7 @@ fn render_command(args: RenderArgs) -> Result<()> {
     let mut scene = load(&args.input)?;
     let load_s = t0.elapsed().as_secs_f64();
     let camera = choose_camera(&scene, &args)?;
-    let add_rig = match args.default_lights {
-        DefaultLights::On => true,
-        DefaultLights::Off => false,
-        DefaultLights::Auto => !defaults::has_own_lights(&scene),
-    };
-    if add_rig {
+    if args.default_lights.wanted(&scene) {
         scene.lights.extend(defaults::light_rig(&camera.to_world));
     }
     let scene = Arc::new(scene);
@@ -336,19 +356,10 @@ fn render_command(args: RenderArgs) -> Result<()> {
     let accel = accel::build(scene.clone(), args.backend)?;
     let build_s = t1.elapsed().as_secs_f64();
 
-    let progress = if args.quiet || !std::io::stderr().is_terminal() {
-        ProgressBar::hidden()
-    } else {
-        let bar = ProgressBar::new(0);
-        bar.set_style(
-            ProgressStyle::with_template(
-                "{spinner} rendering [{bar:40}] {percent}% tiles, eta {eta}",
-            )
-            .expect("valid template")
-            .progress_chars("=> "),
-        );
-        bar
-    };
+    let progress = progress_bar(
+        args.quiet,
+        "{spinner} rendering [{bar:40}] {percent}% tiles, eta {eta}",
+    );
     let settings = RenderSettings {
         width: args.width,
         height: args.height,

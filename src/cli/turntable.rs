@@ -1,16 +1,14 @@
 //! `glint turntable`: flags for a turntable sequence, then `crate::turntable` does the work.
 //! Load and build happen once; a finished sequence (all frames on disk) skips both and only previews.
 
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 use clap::ValueEnum;
-use indicatif::{ProgressBar, ProgressStyle};
 
-use super::{load, DefaultLights, MAX_EDGE};
+use super::{load, progress_bar, DefaultLights, MAX_EDGE};
 use crate::accel::{self, Backend};
 use crate::film::Format;
 use crate::render::RenderSettings;
@@ -266,12 +264,7 @@ fn render_frames(
         exposure: args.exposure,
         overwrite: args.overwrite,
     };
-    let add_rig = match args.default_lights {
-        DefaultLights::On => true,
-        DefaultLights::Off => false,
-        DefaultLights::Auto => !defaults::has_own_lights(&scene),
-    };
-    if add_rig {
+    if args.default_lights.wanted(&scene) {
         scene
             .lights
             .extend(defaults::light_rig(&tt.first_camera().to_world));
@@ -282,19 +275,10 @@ fn render_frames(
     let accel = accel::build(scene.clone(), args.backend)?;
     let build_s = t1.elapsed().as_secs_f64();
 
-    let progress = if args.quiet || !std::io::stderr().is_terminal() {
-        ProgressBar::hidden()
-    } else {
-        let bar = ProgressBar::new(0);
-        bar.set_style(
-            ProgressStyle::with_template(
-                "{spinner} turntable [{bar:40}] {pos}/{len} frames ({msg}), {elapsed} elapsed, eta {eta}",
-            )
-            .expect("valid template")
-            .progress_chars("=> "),
-        );
-        bar
-    };
+    let progress = progress_bar(
+        args.quiet,
+        "{spinner} turntable [{bar:40}] {pos}/{len} frames ({msg}), {elapsed} elapsed, eta {eta}",
+    );
     let report = tt.render_sequence(&scene, accel.as_ref(), selected, &progress)?;
     if !args.quiet {
         let total: f64 = report.frame_seconds.iter().sum();

@@ -39,6 +39,25 @@ pub fn frame_bounds(bounds: &Aabb, direction: Vec3, yfov: f32, aspect: f32) -> C
     cam
 }
 
+/// The camera glint renders through unless told otherwise: the file's first, or one framing the model.
+pub fn default_camera(scene: &Scene, aspect: f32) -> Camera {
+    scene.cameras.first().cloned().unwrap_or_else(|| {
+        frame_bounds(
+            &scene.bounds(),
+            default_view_direction(),
+            DEFAULT_FOV_DEG.to_radians(),
+            aspect,
+        )
+    })
+}
+
+/// Adds the light rig (placed relative to the camera) when the scene has no light of its own.
+pub fn light_if_unlit(scene: &mut Scene, camera_to_world: &Mat4) {
+    if !has_own_lights(scene) {
+        scene.lights.extend(light_rig(camera_to_world));
+    }
+}
+
 /// Centre and radius of the sphere around a box (a unit sphere for an empty box, so that empty files
 /// still render).
 pub fn bounding_sphere(bounds: &Aabb) -> (Vec3, f32) {
