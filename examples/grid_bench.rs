@@ -13,33 +13,9 @@ use std::time::Instant;
 use glam::{Mat4, Vec3};
 use glint::accel::grid::{GridAccel, DEFAULT_LAMBDA};
 use glint::accel::{self, compare, Accel, Backend};
-use glint::scene::{generate, Instance, Mesh, Scene};
+use glint::scene::{generate, Instance, Scene};
 use glint::Ray;
 use rayon::prelude::*;
-
-fn box_mesh(lo: Vec3, hi: Vec3) -> Mesh {
-    let mut m = Mesh::default();
-    for i in 0..8 {
-        m.positions.push(Vec3::new(
-            if i & 1 == 0 { lo.x } else { hi.x },
-            if i & 2 == 0 { lo.y } else { hi.y },
-            if i & 4 == 0 { lo.z } else { hi.z },
-        ));
-        m.normals.push(Vec3::Z);
-    }
-    for [a, b, c, d] in [
-        [0, 1, 3, 2],
-        [4, 6, 7, 5],
-        [0, 4, 5, 1],
-        [2, 3, 7, 6],
-        [0, 2, 6, 4],
-        [1, 5, 7, 3],
-    ] {
-        m.indices.push([a, b, c]);
-        m.indices.push([a, c, d]);
-    }
-    m
-}
 
 /// The model scaled to about 1% of a room 100 units wide, standing near its centre.
 fn model_in_room(model: &Scene) -> Scene {
@@ -50,7 +26,7 @@ fn model_in_room(model: &Scene) -> Scene {
     for inst in &mut s.instances {
         *inst = Instance::new(inst.mesh, m * inst.to_world);
     }
-    let mut room = box_mesh(Vec3::splat(-50.0), Vec3::splat(50.0));
+    let mut room = generate::box_mesh(Vec3::splat(-50.0), Vec3::splat(50.0));
     room.material = 0;
     s.meshes.push(room);
     s.instances

@@ -528,58 +528,14 @@ impl Accel for Bvh {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{Instance, Material, Mesh};
+    use crate::accel::testing::{brute, scene};
+    use crate::scene::{generate, Instance};
     use glam::Mat4;
-
-    /// A grid of n x n unit quads in the z = 0 plane.
-    pub(crate) fn grid_mesh(n: u32) -> Mesh {
-        let mut m = Mesh::default();
-        for y in 0..=n {
-            for x in 0..=n {
-                m.positions.push(Vec3::new(x as f32, y as f32, 0.0));
-                m.normals.push(Vec3::Z);
-            }
-        }
-        for y in 0..n {
-            for x in 0..n {
-                let i = y * (n + 1) + x;
-                m.indices.push([i, i + 1, i + n + 2]);
-                m.indices.push([i, i + n + 2, i + n + 1]);
-            }
-        }
-        m
-    }
-
-    fn scene(meshes: Vec<Mesh>, instances: Vec<Instance>) -> Arc<Scene> {
-        Arc::new(Scene {
-            meshes,
-            instances,
-            materials: vec![Material::default()],
-            ..Default::default()
-        })
-    }
-
-    /// Brute force over every triangle, the reference the tree must match exactly.
-    fn brute(s: &Scene, ray: &Ray) -> Option<(f32, u32, u32)> {
-        let sh = RayShear::new(ray.d);
-        let mut best: Option<(f32, u32, u32)> = None;
-        for (i, inst) in s.instances.iter().enumerate() {
-            let m = &s.meshes[inst.mesh as usize];
-            for p in 0..m.indices.len() as u32 {
-                let [a, b, c] = m.triangle(p).map(|v| inst.to_world.transform_point3(v));
-                let t_max = best.map_or(ray.t_max, |b| b.0);
-                if let Some(h) = triangle::intersect(ray.o, &sh, a, b, c, ray.t_min, t_max) {
-                    best = Some((h.t, i as u32, p));
-                }
-            }
-        }
-        best
-    }
 
     #[test]
     fn matches_brute_force_on_random_rays() {
         let s = scene(
-            vec![grid_mesh(40)],
+            vec![generate::quad_grid(40)],
             vec![
                 Instance::new(0, Mat4::IDENTITY),
                 Instance::new(
@@ -619,7 +575,7 @@ mod tests {
         let bvh = Bvh::build(scene(vec![], vec![]));
         assert!(bvh.intersect(&Ray::new(Vec3::ZERO, Vec3::Z)).is_none());
         let bvh = Bvh::build(scene(
-            vec![grid_mesh(2)],
+            vec![generate::quad_grid(2)],
             vec![Instance::new(0, Mat4::IDENTITY)],
         ));
         let down = Ray::new(Vec3::new(0.5, 0.3, 1.0), -Vec3::Z);
@@ -638,7 +594,7 @@ mod tests {
         // Every node box of a planar grid is flat in z; rays parallel to it along x hit nothing,
         // and rays straight down the z axis through vertices always hit.
         let bvh = Bvh::build(scene(
-            vec![grid_mesh(16)],
+            vec![generate::quad_grid(16)],
             vec![Instance::new(0, Mat4::IDENTITY)],
         ));
         for y in 0..=16 {

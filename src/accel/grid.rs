@@ -475,88 +475,9 @@ impl Accel for GridAccel {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{generate, Instance, Material, Mesh};
+    use crate::accel::testing::{brute, rng, scene};
+    use crate::scene::{generate, Instance, Mesh};
     use glam::Mat4;
-
-    /// A grid of n x n unit quads in the z = 0 plane.
-    fn quad_mesh(n: u32) -> Mesh {
-        let mut m = Mesh::default();
-        for y in 0..=n {
-            for x in 0..=n {
-                m.positions.push(Vec3::new(x as f32, y as f32, 0.0));
-                m.normals.push(Vec3::Z);
-            }
-        }
-        for y in 0..n {
-            for x in 0..n {
-                let i = y * (n + 1) + x;
-                m.indices.push([i, i + 1, i + n + 2]);
-                m.indices.push([i, i + n + 2, i + n + 1]);
-            }
-        }
-        m
-    }
-
-    /// An axis-aligned box of 12 triangles from `lo` to `hi`.
-    fn box_mesh(lo: Vec3, hi: Vec3) -> Mesh {
-        let mut m = Mesh::default();
-        for i in 0..8 {
-            m.positions.push(Vec3::new(
-                if i & 1 == 0 { lo.x } else { hi.x },
-                if i & 2 == 0 { lo.y } else { hi.y },
-                if i & 4 == 0 { lo.z } else { hi.z },
-            ));
-            m.normals.push(Vec3::Z);
-        }
-        for [a, b, c, d] in [
-            [0, 1, 3, 2],
-            [4, 6, 7, 5],
-            [0, 4, 5, 1],
-            [2, 3, 7, 6],
-            [0, 2, 6, 4],
-            [1, 5, 7, 3],
-        ] {
-            m.indices.push([a, b, c]);
-            m.indices.push([a, c, d]);
-        }
-        m
-    }
-
-    fn scene(meshes: Vec<Mesh>, instances: Vec<Instance>) -> Arc<Scene> {
-        Arc::new(Scene {
-            meshes,
-            instances,
-            materials: vec![Material::default()],
-            ..Default::default()
-        })
-    }
-
-    /// Brute force over every triangle, the reference the grid must match exactly.
-    fn brute(s: &Scene, ray: &Ray) -> Option<(f32, u32, u32)> {
-        let sh = RayShear::new(ray.d);
-        let mut best: Option<(f32, u32, u32)> = None;
-        for (i, inst) in s.instances.iter().enumerate() {
-            let m = &s.meshes[inst.mesh as usize];
-            for p in 0..m.indices.len() as u32 {
-                let [a, b, c] = m.triangle(p).map(|v| inst.to_world.transform_point3(v));
-                let t_max = best.map_or(ray.t_max, |b| b.0);
-                if let Some(h) = triangle::intersect(ray.o, &sh, a, b, c, ray.t_min, t_max) {
-                    best = Some((h.t, i as u32, p));
-                }
-            }
-        }
-        best
-    }
-
-    fn rng(seed: u64) -> impl FnMut() -> f32 {
-        let mut s = seed;
-        move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32
-        }
-    }
 
     /// The grid's answers for `ray` against brute force: same distance bits; the same triangle, or
     /// another at exactly the same distance.
@@ -575,7 +496,7 @@ mod tests {
     #[test]
     fn matches_brute_force_on_random_rays() {
         let s = scene(
-            vec![quad_mesh(40), generate::icosphere(3, 0.1)],
+            vec![generate::quad_grid(40), generate::icosphere(3, 0.1)],
             vec![
                 Instance::new(0, Mat4::IDENTITY),
                 Instance::new(
@@ -610,7 +531,7 @@ mod tests {
     #[test]
     fn axis_parallel_rays() {
         let s = scene(
-            vec![quad_mesh(16), generate::icosphere(2, 0.0)],
+            vec![generate::quad_grid(16), generate::icosphere(2, 0.0)],
             vec![
                 Instance::new(0, Mat4::IDENTITY),
                 Instance::new(
@@ -657,7 +578,10 @@ mod tests {
         ));
         assert!(g.intersect(&Ray::new(Vec3::ZERO, Vec3::Z)).is_none());
 
-        let s = scene(vec![quad_mesh(8)], vec![Instance::new(0, Mat4::IDENTITY)]);
+        let s = scene(
+            vec![generate::quad_grid(8)],
+            vec![Instance::new(0, Mat4::IDENTITY)],
+        );
         let g = GridAccel::build(s.clone());
         assert_eq!(g.resolution()[2], 1, "a flat scene gets one cell across");
         let down = Ray::new(Vec3::new(0.5, 0.3, 1.0), -Vec3::Z);
@@ -699,7 +623,7 @@ mod tests {
         // much larger than the sphere's triangles, which all crowd into a few cells.
         let s = scene(
             vec![
-                box_mesh(Vec3::splat(-10.0), Vec3::splat(10.0)),
+                generate::box_mesh(Vec3::splat(-10.0), Vec3::splat(10.0)),
                 generate::icosphere(4, 0.05),
             ],
             vec![

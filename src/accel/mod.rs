@@ -6,6 +6,8 @@ pub mod compare;
 #[cfg(feature = "embree")]
 pub mod embree;
 pub mod grid;
+#[cfg(test)]
+mod testing;
 pub mod triangle;
 
 use std::fmt;

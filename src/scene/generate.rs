@@ -83,6 +83,60 @@ pub fn icosphere(subdivisions: u32, bump: f32) -> Mesh {
     }
 }
 
+/// A grid of n x n unit quads in the z = 0 plane (2 n^2 triangles).
+pub fn quad_grid(n: u32) -> Mesh {
+    let mut m = Mesh::default();
+    for y in 0..=n {
+        for x in 0..=n {
+            m.positions.push(Vec3::new(x as f32, y as f32, 0.0));
+            m.normals.push(Vec3::Z);
+        }
+    }
+    for y in 0..n {
+        for x in 0..n {
+            let i = y * (n + 1) + x;
+            m.indices.push([i, i + 1, i + n + 2]);
+            m.indices.push([i, i + n + 2, i + n + 1]);
+        }
+    }
+    m
+}
+
+/// An axis-aligned box of 12 triangles from `lo` to `hi`.
+pub fn box_mesh(lo: Vec3, hi: Vec3) -> Mesh {
+    let mut m = Mesh::default();
+    for i in 0..8 {
+        m.positions.push(Vec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        ));
+        m.normals.push(Vec3::Z);
+    }
+    for [a, b, c, d] in [
+        [0, 1, 3, 2],
+        [4, 6, 7, 5],
+        [0, 4, 5, 1],
+        [2, 3, 7, 6],
+        [0, 2, 6, 4],
+        [1, 5, 7, 3],
+    ] {
+        m.indices.push([a, b, c]);
+        m.indices.push([a, c, d]);
+    }
+    m
+}
+
+/// A scene of the given meshes and instances, all with the default material.
+pub fn scene_of(meshes: Vec<Mesh>, instances: Vec<Instance>) -> Scene {
+    Scene {
+        meshes,
+        instances,
+        materials: vec![Material::default()],
+        ..Default::default()
+    }
+}
+
 /// A scene holding one mesh at the identity, with the default material.
 pub fn single_mesh_scene(mut mesh: Mesh) -> Scene {
     mesh.material = 0;

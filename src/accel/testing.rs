@@ -1,0 +1,42 @@
+//! Helpers for the accelerators' unit tests: a brute-force reference and a small deterministic RNG.
+//! Compiled only for tests.
+
+use super::triangle::{self, RayShear};
+use crate::geometry::Ray;
+use std::sync::Arc;
+
+use crate::scene::{generate, Instance, Mesh, Scene};
+
+/// A shared scene of the meshes and instances, with the default material.
+pub fn scene(meshes: Vec<Mesh>, instances: Vec<Instance>) -> Arc<Scene> {
+    Arc::new(generate::scene_of(meshes, instances))
+}
+
+/// Brute force over every triangle: (t, instance, primitive) of the closest hit, the reference the
+/// Rust backends must match exactly (they use the same triangle test).
+pub fn brute(s: &Scene, ray: &Ray) -> Option<(f32, u32, u32)> {
+    let sh = RayShear::new(ray.d);
+    let mut best: Option<(f32, u32, u32)> = None;
+    for (i, inst) in s.instances.iter().enumerate() {
+        let m = &s.meshes[inst.mesh as usize];
+        for p in 0..m.indices.len() as u32 {
+            let [a, b, c] = m.triangle(p).map(|v| inst.to_world.transform_point3(v));
+            let t_max = best.map_or(ray.t_max, |b| b.0);
+            if let Some(h) = triangle::intersect(ray.o, &sh, a, b, c, ray.t_min, t_max) {
+                best = Some((h.t, i as u32, p));
+            }
+        }
+    }
+    best
+}
+
+/// Uniform numbers in [0, 1) from a xorshift generator.
+pub fn rng(seed: u64) -> impl FnMut() -> f32 {
+    let mut s = seed;
+    move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
