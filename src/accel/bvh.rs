@@ -226,16 +226,6 @@ impl Bvh {
                     t1[l] = if tf < t1[l] { tf } else { t1[l] };
                 }
             }
-            if any {
-                // Any hit will do: no need to order the children.
-                for l in 0..4 {
-                    if t0[l] <= t1[l] {
-                        stack[sp] = (node.child[l], node.count[l], t0[l]);
-                        sp += 1;
-                    }
-                }
-                continue;
-            }
             // Push the children that were hit, farthest first, so the nearest is popped next.
             let mut order = [(0.0f32, 0usize); 4];
             let mut n = 0;
