@@ -6,6 +6,7 @@
 use std::sync::Arc;
 
 use glam::Vec3;
+use rayon::prelude::*;
 
 use super::triangle::{self, RayShear, Tri4};
 use super::Accel;
@@ -71,12 +72,6 @@ struct PrimRef {
     index: u32,
 }
 
-/// A subtree built independently (possibly on another thread), with node indices local to it.
-struct Subtree {
-    nodes: Vec<Node>,
-    order: Vec<u32>,
-}
-
 impl Bvh {
     pub fn build(scene: Arc<Scene>) -> Self {
         let mut tris = Vec::with_capacity(scene.triangle_count());
@@ -101,7 +96,7 @@ impl Bvh {
                 });
             }
         }
-        let refs: Vec<PrimRef> = tris
+        let mut refs: Vec<PrimRef> = tris
             .iter()
             .enumerate()
             .map(|(i, t)| {
@@ -113,16 +108,17 @@ impl Bvh {
                 }
             })
             .collect();
-        let tree = build_subtree(refs);
+        let bin = build_subtree(&mut refs, 0);
+        let order: Vec<u32> = refs.iter().map(|r| r.index).collect();
         let mut out = Collapsed {
-            nodes: Vec::with_capacity(tree.nodes.len() / 2 + 1),
+            nodes: Vec::with_capacity(bin.len() / 2 + 1),
             packets: Vec::with_capacity(tris.len() / 2 + 1),
             ids: Vec::with_capacity(tris.len() * 2),
         };
-        if !tree.order.is_empty() {
+        if !order.is_empty() {
             let source = Source {
-                bin: &tree.nodes,
-                order: &tree.order,
+                bin: &bin,
+                order: &order,
                 tris: &tris,
                 ids: &ids,
             };
@@ -269,8 +265,11 @@ fn pack_leaf(src: &Source, leaf: &Node, out: &mut Collapsed) -> u32 {
     let first = out.packets.len() as u32;
     let refs = &src.order[leaf.index as usize..(leaf.index + leaf.count) as usize];
     for chunk in refs.chunks(4) {
-        let tris: Vec<[Vec3; 3]> = chunk.iter().map(|&i| src.tris[i as usize]).collect();
-        out.packets.push(Tri4::new(&tris));
+        let mut tris = [[Vec3::ZERO; 3]; 4];
+        for (t, &i) in tris.iter_mut().zip(chunk) {
+            *t = src.tris[i as usize];
+        }
+        out.packets.push(Tri4::new(&tris[..chunk.len()]));
         for lane in 0..4 {
             out.ids.push(chunk.get(lane).map_or(
                 TriId {
@@ -344,17 +343,18 @@ const fn gamma(n: i32) -> f32 {
     e / (1.0 - e)
 }
 
-fn build_subtree(refs: Vec<PrimRef>) -> Subtree {
+/// Builds the binary tree over `refs` (reordering them in place into leaf order); leaves index into
+/// the whole reference array, whose slice this is from position `base` on.
+fn build_subtree(refs: &mut [PrimRef], base: u32) -> Vec<Node> {
     let mut nodes = Vec::with_capacity(2 * refs.len() / MAX_LEAF.max(1) + 1);
-    let mut order = Vec::with_capacity(refs.len());
     nodes.push(Node {
         min: [0.0; 3],
         index: 0,
         max: [0.0; 3],
         count: 0,
     });
-    build_into(refs, 0, &mut nodes, &mut order);
-    Subtree { nodes, order }
+    build_into(refs, base, 0, &mut nodes);
+    nodes
 }
 
 fn set_bounds(node: &mut Node, b: Aabb) {
@@ -362,23 +362,44 @@ fn set_bounds(node: &mut Node, b: Aabb) {
     node.max = b.max.to_array();
 }
 
-/// Fills node `at` (already allocated) from `refs`, appending children and leaf order.
-fn build_into(refs: Vec<PrimRef>, at: usize, nodes: &mut Vec<Node>, order: &mut Vec<u32>) {
-    let bounds = refs.iter().fold(Aabb::EMPTY, |b, r| b.union(r.bounds));
+/// Sets with more references than this are binned in parallel.
+const PARALLEL_BINNING: usize = 1 << 16;
+
+/// Bounds of the references and of their centroids.
+fn bounds_of(refs: &[PrimRef]) -> (Aabb, Aabb) {
+    let fold = |(b, c): (Aabb, Aabb), r: &PrimRef| (b.union(r.bounds), c.grow(r.centroid));
+    let merge = |(b0, c0): (Aabb, Aabb), (b1, c1): (Aabb, Aabb)| (b0.union(b1), c0.union(c1));
+    let empty = (Aabb::EMPTY, Aabb::EMPTY);
+    if refs.len() > PARALLEL_BINNING {
+        refs.par_chunks(8192)
+            .map(|c| c.iter().fold(empty, fold))
+            .reduce(|| empty, merge)
+    } else {
+        refs.iter().fold(empty, fold)
+    }
+}
+
+/// Fills node `at` (already allocated) from `refs`, appending its descendants.
+fn build_into(refs: &mut [PrimRef], base: u32, at: usize, nodes: &mut Vec<Node>) {
+    let (bounds, centroids) = bounds_of(refs);
     set_bounds(&mut nodes[at], bounds);
     let split = if refs.len() <= 1 {
         None
     } else {
-        find_split(&refs, bounds)
+        find_split(refs, bounds, centroids)
     };
-    let (left, right) = match split {
-        Some(s) => partition(refs, s),
+    let mid = match split {
+        Some(s) => partition_in_place(refs, |r| s.bin_of(r.centroid) < s.bin),
         // No split beats a leaf, or the centroids coincide: still split large sets so leaves stay small.
-        None if refs.len() > MAX_LEAF => median_split(refs),
+        None if refs.len() > MAX_LEAF => {
+            let axis = centroids.extent().max_position();
+            let mid = refs.len() / 2;
+            refs.select_nth_unstable_by(mid, |a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
+            mid
+        }
         None => {
-            nodes[at].index = order.len() as u32;
+            nodes[at].index = base;
             nodes[at].count = refs.len() as u32;
-            order.extend(refs.iter().map(|r| r.index));
             return;
         }
     };
@@ -388,31 +409,46 @@ fn build_into(refs: Vec<PrimRef>, at: usize, nodes: &mut Vec<Node>, order: &mut 
     let blank = nodes[at];
     nodes.push(blank);
     nodes.push(blank);
-    if left.len() + right.len() >= PARALLEL_THRESHOLD {
-        let (lt, rt) = rayon::join(|| build_subtree(left), || build_subtree(right));
-        graft(lt, l, nodes, order);
-        graft(rt, l + 1, nodes, order);
+    let parallel = refs.len() >= PARALLEL_THRESHOLD;
+    let (left, right) = refs.split_at_mut(mid);
+    let right_base = base + mid as u32;
+    if parallel {
+        let (lt, rt) = rayon::join(
+            || build_subtree(left, base),
+            || build_subtree(right, right_base),
+        );
+        graft(lt, l, nodes);
+        graft(rt, l + 1, nodes);
     } else {
-        build_into(left, l, nodes, order);
-        build_into(right, l + 1, nodes, order);
+        build_into(left, base, l, nodes);
+        build_into(right, right_base, l + 1, nodes);
     }
 }
 
-/// Copies a separately built subtree into `nodes`, its root into slot `at`, renumbering its indices.
-fn graft(sub: Subtree, at: usize, nodes: &mut Vec<Node>, order: &mut Vec<u32>) {
+/// Moves the references for which `left` holds to the front; returns how many there are.
+fn partition_in_place(refs: &mut [PrimRef], left: impl Fn(&PrimRef) -> bool) -> usize {
+    let mut i = 0;
+    for j in 0..refs.len() {
+        if left(&refs[j]) {
+            refs.swap(i, j);
+            i += 1;
+        }
+    }
+    i
+}
+
+/// Copies a separately built subtree into `nodes`, its root into slot `at`, renumbering inner nodes
+/// (leaf indices are already global).
+fn graft(sub: Vec<Node>, at: usize, nodes: &mut Vec<Node>) {
     let node_base = nodes.len() as u32 - 1; // subtree node k>0 lands at node_base + k
-    let leaf_base = order.len() as u32;
     let fix = |mut n: Node| {
-        if n.count > 0 {
-            n.index += leaf_base;
-        } else {
+        if n.count == 0 {
             n.index += node_base;
         }
         n
     };
-    nodes[at] = fix(sub.nodes[0]);
-    nodes.extend(sub.nodes[1..].iter().map(|&n| fix(n)));
-    order.extend(sub.order);
+    nodes[at] = fix(sub[0]);
+    nodes.extend(sub[1..].iter().map(|&n| fix(n)));
 }
 
 #[derive(Clone, Copy)]
@@ -420,52 +456,99 @@ struct Split {
     axis: usize,
     /// Bins `0..bin` go left.
     bin: usize,
+    /// Bins in use (fewer for small sets, where evaluating 16 would cost more than it finds).
+    bins: usize,
     lo: f32,
     scale: f32,
 }
 
 impl Split {
     fn bin_of(&self, c: Vec3) -> usize {
-        (((c[self.axis] - self.lo) * self.scale) as usize).min(BINS - 1)
+        (((c[self.axis] - self.lo) * self.scale) as usize).min(self.bins - 1)
+    }
+}
+
+/// Per-axis bins of references: box and count.
+#[derive(Clone, Copy)]
+struct Bins {
+    boxes: [[Aabb; BINS]; 3],
+    counts: [[usize; BINS]; 3],
+}
+
+impl Bins {
+    const EMPTY: Bins = Bins {
+        boxes: [[Aabb::EMPTY; BINS]; 3],
+        counts: [[0; BINS]; 3],
+    };
+
+    /// Bins of a run of references (built in place: a `Bins` is too big to pass around per reference).
+    fn of(splits: &[Option<Split>; 3], refs: &[PrimRef]) -> Self {
+        let mut bins = Bins::EMPTY;
+        for r in refs {
+            bins.add(splits, r);
+        }
+        bins
+    }
+
+    fn add(&mut self, splits: &[Option<Split>; 3], r: &PrimRef) {
+        for (axis, s) in splits.iter().enumerate() {
+            if let Some(s) = s {
+                let b = s.bin_of(r.centroid);
+                self.boxes[axis][b] = self.boxes[axis][b].union(r.bounds);
+                self.counts[axis][b] += 1;
+            }
+        }
+    }
+
+    fn merge(mut self, o: Bins) -> Self {
+        for axis in 0..3 {
+            for b in 0..BINS {
+                self.boxes[axis][b] = self.boxes[axis][b].union(o.boxes[axis][b]);
+                self.counts[axis][b] += o.counts[axis][b];
+            }
+        }
+        self
     }
 }
 
 /// The binned-SAH split with the lowest cost, if it beats making a leaf.
-fn find_split(refs: &[PrimRef], bounds: Aabb) -> Option<Split> {
-    let cb = refs.iter().fold(Aabb::EMPTY, |b, r| b.grow(r.centroid));
+fn find_split(refs: &[PrimRef], bounds: Aabb, cb: Aabb) -> Option<Split> {
+    let nb = (refs.len() / 2).clamp(4, BINS);
+    let splits: [Option<Split>; 3] = std::array::from_fn(|axis| {
+        let extent = cb.max[axis] - cb.min[axis];
+        // Also skips a NaN extent.
+        (extent.partial_cmp(&0.0) == Some(std::cmp::Ordering::Greater)).then(|| Split {
+            axis,
+            bin: 0,
+            bins: nb,
+            lo: cb.min[axis],
+            scale: nb as f32 / extent,
+        })
+    });
+    let bins = if refs.len() > PARALLEL_BINNING {
+        refs.par_chunks(8192)
+            .map(|c| Bins::of(&splits, c))
+            .reduce(|| Bins::EMPTY, Bins::merge)
+    } else {
+        Bins::of(&splits, refs)
+    };
     let leaf_cost = refs.len() as f32;
     let parent_area = bounds.surface_area().max(f32::MIN_POSITIVE);
     let mut best: Option<(f32, Split)> = None;
-    for axis in 0..3 {
-        let extent = cb.max[axis] - cb.min[axis];
-        // Also skips a NaN extent.
-        if extent.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
-            continue;
-        }
-        let split0 = Split {
-            axis,
-            bin: 0,
-            lo: cb.min[axis],
-            scale: BINS as f32 / extent,
-        };
-        let mut boxes = [Aabb::EMPTY; BINS];
-        let mut counts = [0usize; BINS];
-        for r in refs {
-            let b = split0.bin_of(r.centroid);
-            boxes[b] = boxes[b].union(r.bounds);
-            counts[b] += 1;
-        }
+    for (axis, split0) in splits.iter().enumerate() {
+        let Some(split0) = split0 else { continue };
+        let (boxes, counts) = (&bins.boxes[axis], &bins.counts[axis]);
         let mut right_area = [0.0f32; BINS];
         let mut right_count = [0usize; BINS];
         let (mut acc, mut n) = (Aabb::EMPTY, 0);
-        for b in (1..BINS).rev() {
+        for b in (1..nb).rev() {
             acc = acc.union(boxes[b]);
             n += counts[b];
             right_area[b] = acc.surface_area();
             right_count[b] = n;
         }
         let (mut acc, mut n) = (Aabb::EMPTY, 0);
-        for b in 1..BINS {
+        for b in 1..nb {
             acc = acc.union(boxes[b - 1]);
             n += counts[b - 1];
             if n == 0 || right_count[b] == 0 {
@@ -475,26 +558,12 @@ fn find_split(refs: &[PrimRef], bounds: Aabb) -> Option<Split> {
                 + (acc.surface_area() * n as f32 + right_area[b] * right_count[b] as f32)
                     / parent_area;
             if best.is_none_or(|(c, _)| cost < c) {
-                best = Some((cost, Split { bin: b, ..split0 }));
+                best = Some((cost, Split { bin: b, ..*split0 }));
             }
         }
     }
     best.filter(|(c, _)| *c < leaf_cost || refs.len() > MAX_LEAF)
         .map(|(_, s)| s)
-}
-
-fn partition(refs: Vec<PrimRef>, s: Split) -> (Vec<PrimRef>, Vec<PrimRef>) {
-    refs.into_iter().partition(|r| s.bin_of(r.centroid) < s.bin)
-}
-
-/// Splits at the median centroid of the widest axis (for sets whose centroids coincide on binning).
-fn median_split(mut refs: Vec<PrimRef>) -> (Vec<PrimRef>, Vec<PrimRef>) {
-    let cb = refs.iter().fold(Aabb::EMPTY, |b, r| b.grow(r.centroid));
-    let axis = cb.extent().max_position();
-    let mid = refs.len() / 2;
-    refs.select_nth_unstable_by(mid, |a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
-    let right = refs.split_off(mid);
-    (refs, right)
 }
 
 impl Accel for Bvh {
