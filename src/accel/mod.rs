@@ -6,6 +6,8 @@ pub mod compare;
 #[cfg(feature = "embree")]
 pub mod embree;
 pub mod grid;
+#[cfg(feature = "obvhs")]
+pub mod obvhs;
 #[cfg(test)]
 mod testing;
 pub mod triangle;
@@ -37,6 +39,8 @@ pub enum Backend {
     Embree,
     Bvh,
     Grid,
+    /// The `obvhs` crate's compressed wide BVH8 (a peer for benchmarks; `obvhs` feature).
+    Obvhs,
 }
 
 impl Backend {
@@ -55,6 +59,9 @@ impl Backend {
             v.push(Backend::Embree);
         }
         v.push(Backend::Grid);
+        if cfg!(feature = "obvhs") {
+            v.push(Backend::Obvhs);
+        }
         v
     }
 }
@@ -65,6 +72,7 @@ impl fmt::Display for Backend {
             Backend::Embree => "embree",
             Backend::Bvh => "bvh",
             Backend::Grid => "grid",
+            Backend::Obvhs => "obvhs",
         })
     }
 }
@@ -76,8 +84,9 @@ impl FromStr for Backend {
             "embree" => Ok(Backend::Embree),
             "bvh" => Ok(Backend::Bvh),
             "grid" => Ok(Backend::Grid),
+            "obvhs" => Ok(Backend::Obvhs),
             _ => Err(format!(
-                "unknown backend '{s}' (expected embree, bvh or grid)"
+                "unknown backend '{s}' (expected embree, bvh, grid or obvhs)"
             )),
         }
     }
@@ -87,6 +96,8 @@ impl FromStr for Backend {
 pub enum AccelError {
     #[error("this glint was built without Embree (rebuild with the `embree` feature, or use --backend bvh)")]
     EmbreeUnavailable,
+    #[error("this glint was built without obvhs (rebuild with `--features obvhs`, or use --backend bvh)")]
+    ObvhsUnavailable,
     #[error("embree: {0}")]
     Embree(String),
 }
@@ -100,5 +111,9 @@ pub fn build(scene: Arc<Scene>, backend: Backend) -> Result<Box<dyn Accel>, Acce
         Backend::Embree => Ok(Box::new(embree::EmbreeAccel::build(scene)?)),
         #[cfg(not(feature = "embree"))]
         Backend::Embree => Err(AccelError::EmbreeUnavailable),
+        #[cfg(feature = "obvhs")]
+        Backend::Obvhs => Ok(Box::new(obvhs::ObvhsAccel::build(scene))),
+        #[cfg(not(feature = "obvhs"))]
+        Backend::Obvhs => Err(AccelError::ObvhsUnavailable),
     }
 }
