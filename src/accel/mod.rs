@@ -21,7 +21,7 @@ use crate::scene::Scene;
 
 /// An acceleration structure over one scene.
 ///
-/// `intersect` returns the closest hit with `t` in `[ray.t_min, ray.t_max)`; `occluded` answers whether
+/// `intersect` returns the closest hit with `t` in `(ray.t_min, ray.t_max)`; `occluded` answers whether
 /// any hit exists there (for shadow rays, with early exit). Hits on materials that need an alpha test
 /// count only where `Scene::alpha_passes` says so.
 pub trait Accel: Send + Sync {
