@@ -70,6 +70,7 @@ impl SurfaceInteraction {
                 }
             }
         }
+        let n = valid_reflection_normal(n, ng, -ray.d);
 
         let base = scene.base_color(mat, uv);
         let (mut metallic, mut roughness) = (mat.metallic, mat.roughness);
@@ -93,6 +94,31 @@ impl SurfaceInteraction {
             prim: hit.prim,
         }
     }
+}
+
+/// Smallest margin above the geometric surface for the mirror direction of `wo` about the shading normal.
+const MIN_REFLECTION_COS: f32 = 0.01;
+
+/// Bends a shading normal towards the geometric one until the mirror reflection of `wo` stays above
+/// the geometric surface. Interpolated and normal-mapped normals can tilt so far from the true surface
+/// that glossy reflections point into it; those paths would die and leave black rims (as on the
+/// NormalTangentMirrorTest cells). The bend is the smallest found by bisection, so surfaces seen
+/// head-on keep their normals unchanged.
+fn valid_reflection_normal(n: Vec3, ng: Vec3, wo: Vec3) -> Vec3 {
+    let reflects_above = |m: Vec3| (2.0 * m.dot(wo) * m - wo).dot(ng) >= MIN_REFLECTION_COS;
+    if reflects_above(n) || !reflects_above(ng) {
+        return n;
+    }
+    let (mut lo, mut hi) = (0.0f32, 1.0f32);
+    for _ in 0..10 {
+        let mid = 0.5 * (lo + hi);
+        if reflects_above(n.lerp(ng, mid).normalize()) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    n.lerp(ng, hi).normalize()
 }
 
 /// Tangent and bitangent for normal mapping, orthogonalised against `n`: from the mesh's tangents when
