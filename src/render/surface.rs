@@ -157,3 +157,25 @@ fn tangent_frame(scene: &Scene, hit: &Hit, n: Vec3) -> Option<(Vec3, Vec3)> {
     }
     Some((t, n.cross(t) * sign))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tilted_normals_are_bent_just_enough() {
+        let ng = Vec3::Z;
+        let wo = Vec3::new(0.8, 0.0, 0.6).normalize();
+        // A normal tilted far away from the viewer reflects wo into the surface.
+        let tilted = Vec3::new(-0.7, 0.0, 0.714).normalize();
+        assert!((2.0 * tilted.dot(wo) * tilted - wo).dot(ng) < 0.0);
+        let fixed = valid_reflection_normal(tilted, ng, wo);
+        let r = 2.0 * fixed.dot(wo) * fixed - wo;
+        assert!(r.dot(ng) >= MIN_REFLECTION_COS);
+        // ... and not much more than needed.
+        assert!(r.dot(ng) < 0.05, "bent too far: {}", r.dot(ng));
+        // A normal that already reflects above the surface is kept as it is.
+        let mild = Vec3::new(0.1, 0.05, 1.0).normalize();
+        assert_eq!(valid_reflection_normal(mild, ng, wo), mild);
+    }
+}
