@@ -8,6 +8,7 @@ use std::sync::Arc;
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::flat::{self, TriId};
 use super::triangle::{self, RayShear, Tri4};
 use super::Accel;
 use crate::geometry::{Aabb, Hit, Ray};
@@ -21,8 +22,6 @@ const MAX_LEAF: usize = 4;
 const TRAVERSAL_COST: f32 = 1.0;
 /// Subtrees smaller than this are built on the current thread.
 const PARALLEL_THRESHOLD: usize = 4096;
-/// Marks a triangle id whose material needs an alpha test.
-const ALPHA_BIT: u32 = 1 << 31;
 
 /// A node: bounds and either two children (`count == 0`, left child at `index`, right child at
 /// `index + 1`) or a leaf of `count` triangles starting at `index`. 32 bytes, two per cache line.
@@ -33,13 +32,6 @@ struct Node {
     index: u32,
     max: [f32; 3],
     count: u32,
-}
-
-/// Triangle identity: instance (top bit: alpha-tested) and primitive within its mesh.
-#[derive(Clone, Copy, Debug)]
-struct TriId {
-    inst: u32,
-    prim: u32,
 }
 
 /// A 4-wide node: the boxes of up to four children side by side (one array per bound), and for each
@@ -74,28 +66,7 @@ struct PrimRef {
 
 impl Bvh {
     pub fn build(scene: Arc<Scene>) -> Self {
-        let mut tris = Vec::with_capacity(scene.triangle_count());
-        let mut ids = Vec::with_capacity(tris.capacity());
-        for (i, inst) in scene.instances.iter().enumerate() {
-            let mesh = &scene.meshes[inst.mesh as usize];
-            let alpha = if scene.materials[mesh.material as usize].needs_alpha_test() {
-                ALPHA_BIT
-            } else {
-                0
-            };
-            let world: Vec<Vec3> = mesh
-                .positions
-                .iter()
-                .map(|&p| inst.to_world.transform_point3(p))
-                .collect();
-            for (p, idx) in mesh.indices.iter().enumerate() {
-                tris.push(idx.map(|k| world[k as usize]));
-                ids.push(TriId {
-                    inst: i as u32 | alpha,
-                    prim: p as u32,
-                });
-            }
-        }
+        let (tris, ids) = flat::flatten(&scene);
         let mut refs: Vec<PrimRef> = tris
             .iter()
             .enumerate()
@@ -180,19 +151,14 @@ impl Bvh {
                             continue;
                         }
                         let id = self.ids[4 * packet + lane];
-                        let inst = id.inst & !ALPHA_BIT;
-                        if id.inst & ALPHA_BIT != 0
-                            && !self
-                                .scene
-                                .alpha_passes(inst, id.prim, h.u[lane], h.v[lane], ray)
-                        {
+                        if !id.accepts(&self.scene, h.u[lane], h.v[lane], ray) {
                             continue;
                         }
                         let hit = Hit {
                             t: h.t[lane],
                             u: h.u[lane],
                             v: h.v[lane],
-                            inst,
+                            inst: id.inst(),
                             prim: id.prim,
                         };
                         if any {
@@ -271,13 +237,11 @@ fn pack_leaf(src: &Source, leaf: &Node, out: &mut Collapsed) -> u32 {
         }
         out.packets.push(Tri4::new(&tris[..chunk.len()]));
         for lane in 0..4 {
-            out.ids.push(chunk.get(lane).map_or(
-                TriId {
-                    inst: u32::MAX,
-                    prim: u32::MAX,
-                },
-                |&i| src.ids[i as usize],
-            ));
+            out.ids.push(
+                chunk
+                    .get(lane)
+                    .map_or(TriId::NONE, |&i| src.ids[i as usize]),
+            );
         }
     }
     first

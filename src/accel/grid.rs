@@ -16,6 +16,7 @@ use std::sync::Arc;
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::flat::{flatten, TriId};
 use super::triangle::{self, RayShear};
 use super::Accel;
 use crate::geometry::{Aabb, Hit, Ray};
@@ -27,19 +28,10 @@ pub const DEFAULT_LAMBDA: f32 = 3.0;
 pub const MAX_CELLS_PER_AXIS: u32 = 512;
 /// Most cells in all (4 bytes of offsets each).
 pub const MAX_CELLS: usize = 1 << 24;
-/// Marks a triangle id whose material needs an alpha test.
-const ALPHA_BIT: u32 = 1 << 31;
 /// Slots of the per-ray mailbox (a direct-mapped cache of recently tested triangles).
 const MAILBOX: usize = 64;
 /// Triangles whose box spans more cells than this are checked against each cell's box by their plane.
 const PLANE_TEST_MIN_CELLS: usize = 2;
-
-/// Triangle identity: instance (top bit: alpha-tested) and primitive within its mesh.
-#[derive(Clone, Copy, Debug)]
-struct TriId {
-    inst: u32,
-    prim: u32,
-}
 
 pub struct GridAccel {
     scene: Arc<Scene>,
@@ -333,17 +325,14 @@ impl GridAccel {
                 let [a, b, c] = self.tris[id as usize];
                 if let Some(h) = triangle::intersect(ray.o, &sh, a, b, c, ray.t_min, t_max) {
                     let tid = self.ids[id as usize];
-                    let inst = tid.inst & !ALPHA_BIT;
-                    if tid.inst & ALPHA_BIT != 0
-                        && !self.scene.alpha_passes(inst, tid.prim, h.u, h.v, ray)
-                    {
+                    if !tid.accepts(&self.scene, h.u, h.v, ray) {
                         continue;
                     }
                     let hit = Hit {
                         t: h.t,
                         u: h.u,
                         v: h.v,
-                        inst,
+                        inst: tid.inst(),
                         prim: tid.prim,
                     };
                     if any {
@@ -377,35 +366,6 @@ impl GridAccel {
             t_next[axis] = self.crossing(axis, k, o[axis], inv[axis]);
         }
     }
-}
-
-/// World-space triangles of every instance, with their identities (as the BVH flattens them).
-fn flatten(scene: &Scene) -> (Vec<[Vec3; 3]>, Vec<TriId>) {
-    let mut tris = Vec::with_capacity(scene.triangle_count());
-    let mut ids = Vec::with_capacity(tris.capacity());
-    for (i, inst) in scene.instances.iter().enumerate() {
-        let mesh = &scene.meshes[inst.mesh as usize];
-        let alpha = if scene.materials[mesh.material as usize].needs_alpha_test() {
-            ALPHA_BIT
-        } else {
-            0
-        };
-        let world: Vec<Vec3> = mesh
-            .positions
-            .par_iter()
-            .map(|&p| inst.to_world.transform_point3(p))
-            .collect();
-        tris.par_extend(
-            mesh.indices
-                .par_iter()
-                .map(|idx| idx.map(|k| world[k as usize])),
-        );
-        ids.extend((0..mesh.indices.len()).map(|p| TriId {
-            inst: i as u32 | alpha,
-            prim: p as u32,
-        }));
-    }
-    (tris, ids)
 }
 
 /// Cells per axis for `n` triangles in a box of `extent`: `extent_axis * (lambda n / volume)^(1/3)`,

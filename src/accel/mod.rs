@@ -5,6 +5,7 @@ pub mod bvh;
 pub mod compare;
 #[cfg(feature = "embree")]
 pub mod embree;
+pub mod flat;
 pub mod grid;
 #[cfg(feature = "obvhs")]
 pub mod obvhs;

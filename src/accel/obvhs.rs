@@ -29,19 +29,10 @@ use obvhs::rt_triangle::RtTriangle;
 use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
 
+use super::flat::{flatten, TriId};
 use super::Accel;
 use crate::geometry::{Hit, Ray};
 use crate::scene::Scene;
-
-/// Marks an instance id whose material needs an alpha test.
-const ALPHA_BIT: u32 = 1 << 31;
-
-/// Triangle identity: instance (top bit: alpha-tested) and primitive within its mesh.
-#[derive(Clone, Copy, Debug)]
-struct TriId {
-    inst: u32,
-    prim: u32,
-}
 
 pub struct ObvhsAccel {
     scene: Arc<Scene>,
@@ -114,33 +105,19 @@ impl ObvhsAccel {
 
     pub fn build_with(scene: Arc<Scene>, preset: &'static str, params: BvhBuildParams) -> Self {
         let scale = world_scale(&scene);
-        let mut tris = Vec::with_capacity(scene.triangle_count());
-        let mut ids = Vec::with_capacity(tris.capacity());
-        for (i, inst) in scene.instances.iter().enumerate() {
-            let mesh = &scene.meshes[inst.mesh as usize];
-            let alpha = if scene.materials[mesh.material as usize].needs_alpha_test() {
-                ALPHA_BIT
-            } else {
-                0
-            };
-            let world: Vec<[f32; 3]> = mesh
-                .positions
-                .iter()
-                .map(|&p| (inst.to_world.transform_point3(p) * scale).to_array())
-                .collect();
-            for (p, idx) in mesh.indices.iter().enumerate() {
-                let [a, b, c] = idx.map(|k| world[k as usize]);
-                tris.push(Triangle {
+        let (world, ids) = flatten(&scene);
+        let tris: Vec<Triangle> = world
+            .iter()
+            .map(|t| {
+                // obvhs has its own glam: hand the coordinates over as arrays.
+                let [a, b, c] = t.map(|v| (v * scale).to_array());
+                Triangle {
                     v0: a.into(),
                     v1: b.into(),
                     v2: c.into(),
-                });
-                ids.push(TriId {
-                    inst: i as u32 | alpha,
-                    prim: p as u32,
-                });
-            }
-        }
+                }
+            })
+            .collect();
         if tris.is_empty() {
             return Self {
                 scene,
@@ -197,12 +174,9 @@ impl ObvhsAccel {
         let tri = &self.tris[i];
         let t = tri.intersect(r);
         let id = self.ids[i];
-        if id.inst & ALPHA_BIT != 0 && t < r.tmax {
+        if t < r.tmax && id.alpha_tested() {
             let uv = tri.compute_barycentric(r);
-            if !self
-                .scene
-                .alpha_passes(id.inst & !ALPHA_BIT, id.prim, uv.x, uv.y, ray)
-            {
+            if !id.accepts(&self.scene, uv.x, uv.y, ray) {
                 return f32::INFINITY;
             }
         }
@@ -235,7 +209,7 @@ impl Accel for ObvhsAccel {
             t: hit.t / self.scale,
             u: uv.x,
             v: uv.y,
-            inst: id.inst & !ALPHA_BIT,
+            inst: id.inst(),
             prim: id.prim,
         })
     }

@@ -1,0 +1,69 @@
+//! The world-space triangle soup the Rust backends build over: every instance's triangles moved to
+//! world space, each with its identity and whether its material needs an alpha test.
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use crate::geometry::Ray;
+use crate::scene::Scene;
+
+/// Marks an instance id whose material needs an alpha test.
+const ALPHA_BIT: u32 = 1 << 31;
+
+/// Triangle identity: instance (top bit: alpha-tested) and primitive within its mesh.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TriId {
+    inst: u32,
+    pub prim: u32,
+}
+
+impl TriId {
+    /// Fills unused slots (packet lanes); never reported as a hit.
+    pub const NONE: TriId = TriId {
+        inst: u32::MAX,
+        prim: u32::MAX,
+    };
+
+    pub fn new(inst: u32, prim: u32, alpha_tested: bool) -> Self {
+        Self {
+            inst: inst | if alpha_tested { ALPHA_BIT } else { 0 },
+            prim,
+        }
+    }
+
+    pub fn inst(self) -> u32 {
+        self.inst & !ALPHA_BIT
+    }
+
+    pub fn alpha_tested(self) -> bool {
+        self.inst & ALPHA_BIT != 0
+    }
+
+    /// Whether a candidate hit at barycentrics `(u, v)` counts: always, unless the material cuts it out.
+    #[inline(always)]
+    pub fn accepts(self, scene: &Scene, u: f32, v: f32, ray: &Ray) -> bool {
+        !self.alpha_tested() || scene.alpha_passes(self.inst(), self.prim, u, v, ray)
+    }
+}
+
+/// World-space vertices of every triangle of every instance, and their identities, in instance order.
+pub fn flatten(scene: &Scene) -> (Vec<[Vec3; 3]>, Vec<TriId>) {
+    let mut tris = Vec::with_capacity(scene.triangle_count());
+    let mut ids = Vec::with_capacity(tris.capacity());
+    for (i, inst) in scene.instances.iter().enumerate() {
+        let mesh = &scene.meshes[inst.mesh as usize];
+        let alpha = scene.materials[mesh.material as usize].needs_alpha_test();
+        let world: Vec<Vec3> = mesh
+            .positions
+            .par_iter()
+            .map(|&p| inst.to_world.transform_point3(p))
+            .collect();
+        tris.par_extend(
+            mesh.indices
+                .par_iter()
+                .map(|idx| idx.map(|k| world[k as usize])),
+        );
+        ids.extend((0..mesh.indices.len() as u32).map(|p| TriId::new(i as u32, p, alpha)));
+    }
+    (tris, ids)
+}
