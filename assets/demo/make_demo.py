@@ -93,7 +93,11 @@ def grid(nu, nv, f):
             a = j * (nu + 1) + i
             b, c, d = a + 1, a + nu + 1, a + nu + 2
             tris += [(a, c, b), (b, c, d)]
-    return pos, nrm, uv, tris
+    # Rows that collapse to a point (a sphere's poles) would give zero-area triangles: leave them out.
+    def distinct(t):
+        key = lambda k: tuple(round(x, 9) for x in pos[k])
+        return len({key(k) for k in t}) == 3
+    return pos, nrm, uv, [t for t in tris if distinct(t)]
 
 def sphere(u, v):
     th, ph = v * math.pi, u * 2 * math.pi

@@ -119,7 +119,7 @@ pub fn run(cmd: BenchCommand) -> Result<()> {
                 ..Default::default()
             };
             let report = convergence::run(&a.input, &a.out, &config, !a.quiet)?;
-            print!("{}", report.table());
+            super::print_out(&report.table())?;
             Ok(())
         }
         BenchCommand::Rays(a) => {
@@ -136,7 +136,7 @@ pub fn run(cmd: BenchCommand) -> Result<()> {
                 repeat: a.repeat.max(1),
             };
             let report = rays::run(&a.input, &config)?;
-            print!("{}", report.table());
+            super::print_out(&report.table())?;
             if let Some(path) = a.json {
                 report.write_json(&path)?;
             }

@@ -220,25 +220,40 @@ fn load(path: &std::path::Path) -> Result<Scene> {
 fn info_command(input: &std::path::Path) -> Result<()> {
     let scene = load(input)?;
     let s = &scene.stats;
-    println!("{}", input.display());
-    println!("  nodes       {}", s.nodes);
-    println!("  meshes      {} ({} primitives)", s.meshes, s.primitives);
-    println!("  triangles   {}", s.triangles);
-    println!("  materials   {}", s.materials);
-    println!("  textures    {}", s.textures);
-    println!("  lights      {}", s.lights);
-    println!("  cameras     {}", s.cameras);
-    println!("  animations  {}", s.animations);
-    println!("  instances   {}", scene.instances.len());
+    let mut text = format!(
+        "{}\n  nodes       {}\n  meshes      {} ({} primitives)\n  triangles   {}\n  materials   {}\n  \
+         textures    {}\n  lights      {}\n  cameras     {}\n  animations  {}\n  instances   {}\n",
+        input.display(),
+        s.nodes,
+        s.meshes,
+        s.primitives,
+        s.triangles,
+        s.materials,
+        s.textures,
+        s.lights,
+        s.cameras,
+        s.animations,
+        scene.instances.len()
+    );
     let b = scene.bounds();
     if !b.is_empty() {
-        println!(
-            "  bounds      {:?} .. {:?}",
+        text += &format!(
+            "  bounds      {:?} .. {:?}\n",
             b.min.to_array(),
             b.max.to_array()
         );
     }
-    Ok(())
+    print_out(&text)
+}
+
+/// Writes to stdout; a reader that went away (`glint info x | head`) is not an error.
+pub(crate) fn print_out(text: &str) -> Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|_| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(e.into()),
+        _ => Ok(()),
+    }
 }
 
 /// The camera to render through: the file's (by `--camera`), or one framing the model, then adjusted
