@@ -150,3 +150,18 @@ fn same_seed_same_image_whatever_the_thread_count() {
     );
     assert_ne!(one, other_seed);
 }
+
+#[test]
+fn a_reader_that_goes_away_is_not_a_crash() {
+    // As in `glint info model.glb | head -1`: the pipe closes before glint writes.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_glint"))
+        .args(["info", &demo()])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("run glint");
+    drop(child.stdout.take());
+    let o = child.wait_with_output().unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("panicked"), "{}", stderr(&o));
+}
