@@ -43,6 +43,102 @@ pub struct TriHit {
     pub v: f32,
 }
 
+/// One triangle's vertices relative to the ray origin, permuted into the ray's axis order and
+/// sheared so that the ray runs along +z: `x`, `y` across the ray, `z` along it (not yet scaled).
+#[derive(Clone, Copy, Debug)]
+struct Sheared {
+    ax: f32,
+    ay: f32,
+    az: f32,
+    bx: f32,
+    by: f32,
+    bz: f32,
+    cx: f32,
+    cy: f32,
+    cz: f32,
+}
+
+impl Sheared {
+    /// From the vertices' coordinates relative to the origin, given as (kx, ky, kz) components.
+    #[inline(always)]
+    fn new(sh: &RayShear, a: [f32; 3], b: [f32; 3], c: [f32; 3]) -> Self {
+        Self {
+            ax: a[0] - sh.sx * a[2],
+            ay: a[1] - sh.sy * a[2],
+            az: a[2],
+            bx: b[0] - sh.sx * b[2],
+            by: b[1] - sh.sy * b[2],
+            bz: b[2],
+            cx: c[0] - sh.sx * c[2],
+            cy: c[1] - sh.sy * c[2],
+            cz: c[2],
+        }
+    }
+
+    /// The edge functions (u, v, w) in single precision.
+    #[inline(always)]
+    fn edges(&self) -> [f32; 3] {
+        [
+            self.cx * self.by - self.cy * self.bx,
+            self.ax * self.cy - self.ay * self.cx,
+            self.bx * self.ay - self.by * self.ax,
+        ]
+    }
+
+    /// The hit distance times the determinant, from the edge functions.
+    #[inline(always)]
+    fn t_scaled(&self, sh: &RayShear, [u, v, w]: [f32; 3]) -> f32 {
+        u * (sh.sz * self.az) + v * (sh.sz * self.bz) + w * (sh.sz * self.cz)
+    }
+
+    /// Finishes the test from the edge functions and `t_scaled` of them: a hit with `t` in
+    /// `(t_min, t_max)`, or none.
+    #[inline(always)]
+    fn finish(
+        &self,
+        sh: &RayShear,
+        [mut u, mut v, mut w]: [f32; 3],
+        mut t_scaled: f32,
+        t_min: f32,
+        t_max: f32,
+    ) -> Option<TriHit> {
+        // An edge function that is exactly zero is recomputed in double precision, so that the sign
+        // on shared edges is consistent between neighbouring triangles.
+        if u == 0.0 || v == 0.0 || w == 0.0 {
+            let (ax, ay, bx, by, cx, cy) = (
+                self.ax as f64,
+                self.ay as f64,
+                self.bx as f64,
+                self.by as f64,
+                self.cx as f64,
+                self.cy as f64,
+            );
+            u = (cx * by - cy * bx) as f32;
+            v = (ax * cy - ay * cx) as f32;
+            w = (bx * ay - by * ax) as f32;
+            t_scaled = self.t_scaled(sh, [u, v, w]);
+        }
+        if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+            return None;
+        }
+        let det = u + v + w;
+        if det == 0.0 {
+            return None;
+        }
+        let inv = 1.0 / det;
+        let t = t_scaled * inv;
+        if !(t > t_min && t < t_max) {
+            return None;
+        }
+        // u weights vertex a, v vertex b, w vertex c: report the weights of b and c.
+        Some(TriHit {
+            t,
+            u: v * inv,
+            v: w * inv,
+        })
+    }
+}
+
 /// Intersects the ray `o + t d` (with `sh = RayShear::new(d)`) with triangle `(a, b, c)`, both faces,
 /// accepting `t` in `(t_min, t_max)`.
 #[inline(always)]
@@ -56,44 +152,13 @@ pub fn intersect(
     t_max: f32,
 ) -> Option<TriHit> {
     // Plain arrays: indexing them by the per-ray axis is a load, where indexing a Vec3 is a match.
-    let a = (a - o).to_array();
-    let b = (b - o).to_array();
-    let c = (c - o).to_array();
-    let ax = a[sh.kx] - sh.sx * a[sh.kz];
-    let ay = a[sh.ky] - sh.sy * a[sh.kz];
-    let bx = b[sh.kx] - sh.sx * b[sh.kz];
-    let by = b[sh.ky] - sh.sy * b[sh.kz];
-    let cx = c[sh.kx] - sh.sx * c[sh.kz];
-    let cy = c[sh.ky] - sh.sy * c[sh.kz];
-    let mut u = cx * by - cy * bx;
-    let mut v = ax * cy - ay * cx;
-    let mut w = bx * ay - by * ax;
-    // An edge function that is exactly zero is recomputed in double precision, so that the sign on
-    // shared edges is consistent between neighbouring triangles.
-    if u == 0.0 || v == 0.0 || w == 0.0 {
-        u = (cx as f64 * by as f64 - cy as f64 * bx as f64) as f32;
-        v = (ax as f64 * cy as f64 - ay as f64 * cx as f64) as f32;
-        w = (bx as f64 * ay as f64 - by as f64 * ax as f64) as f32;
-    }
-    if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
-        return None;
-    }
-    let det = u + v + w;
-    if det == 0.0 {
-        return None;
-    }
-    let t_scaled = u * (sh.sz * a[sh.kz]) + v * (sh.sz * b[sh.kz]) + w * (sh.sz * c[sh.kz]);
-    let inv = 1.0 / det;
-    let t = t_scaled * inv;
-    if !(t > t_min && t < t_max) {
-        return None;
-    }
-    // u weights vertex a, v vertex b, w vertex c: report the weights of b and c.
-    Some(TriHit {
-        t,
-        u: v * inv,
-        v: w * inv,
-    })
+    let k = |p: Vec3| {
+        let p = (p - o).to_array();
+        [p[sh.kx], p[sh.ky], p[sh.kz]]
+    };
+    let s = Sheared::new(sh, k(a), k(b), k(c));
+    let e = s.edges();
+    s.finish(sh, e, s.t_scaled(sh, e), t_min, t_max)
 }
 
 #[cfg(test)]
@@ -219,12 +284,13 @@ pub struct Hits4 {
     pub v: [f32; 4],
 }
 
-/// The watertight test of `intersect` on four triangles at once. Each lane performs exactly the
-/// operations of the scalar test, in the same order, so both give bit-identical hits.
+/// The watertight test of `intersect` on four triangles at once: the same code per lane (so both give
+/// bit-identical hits), with the edge functions of all lanes computed together so they vectorise.
 #[inline(always)]
 pub fn intersect4(o: Vec3, sh: &RayShear, tri: &Tri4, t_min: f32, t_max: f32) -> Hits4 {
     let o = o.to_array();
     let (kx, ky, kz) = (sh.kx, sh.ky, sh.kz);
+    // Whole rows of four lanes at a time, so the loads and subtractions vectorise.
     let rel = |vertex: usize, axis: usize| -> [f32; 4] {
         let c = &tri.p[vertex][axis];
         [
@@ -234,60 +300,24 @@ pub fn intersect4(o: Vec3, sh: &RayShear, tri: &Tri4, t_min: f32, t_max: f32) ->
             c[3] - o[axis],
         ]
     };
-    let (a_x, a_y, a_z) = (rel(0, kx), rel(0, ky), rel(0, kz));
-    let (b_x, b_y, b_z) = (rel(1, kx), rel(1, ky), rel(1, kz));
-    let (c_x, c_y, c_z) = (rel(2, kx), rel(2, ky), rel(2, kz));
+    let a = [rel(0, kx), rel(0, ky), rel(0, kz)];
+    let b = [rel(1, kx), rel(1, ky), rel(1, kz)];
+    let c = [rel(2, kx), rel(2, ky), rel(2, kz)];
+    let at = |v: &[[f32; 4]; 3], l: usize| [v[0][l], v[1][l], v[2][l]];
+    let sheared: [Sheared; 4] =
+        std::array::from_fn(|l| Sheared::new(sh, at(&a, l), at(&b, l), at(&c, l)));
+    let edges: [[f32; 3]; 4] = std::array::from_fn(|l| sheared[l].edges());
+    let t_scaled: [f32; 4] = std::array::from_fn(|l| sheared[l].t_scaled(sh, edges[l]));
     let mut out = Hits4 {
         t: [f32::INFINITY; 4],
         u: [0.0; 4],
         v: [0.0; 4],
     };
-    let mut eu = [0.0f32; 4];
-    let mut ev = [0.0f32; 4];
-    let mut ew = [0.0f32; 4];
-    let mut t_scaled = [0.0f32; 4];
     for l in 0..4 {
-        let ax = a_x[l] - sh.sx * a_z[l];
-        let ay = a_y[l] - sh.sy * a_z[l];
-        let bx = b_x[l] - sh.sx * b_z[l];
-        let by = b_y[l] - sh.sy * b_z[l];
-        let cx = c_x[l] - sh.sx * c_z[l];
-        let cy = c_y[l] - sh.sy * c_z[l];
-        eu[l] = cx * by - cy * bx;
-        ev[l] = ax * cy - ay * cx;
-        ew[l] = bx * ay - by * ax;
-        t_scaled[l] =
-            eu[l] * (sh.sz * a_z[l]) + ev[l] * (sh.sz * b_z[l]) + ew[l] * (sh.sz * c_z[l]);
-    }
-    for l in 0..4 {
-        let (mut u, mut v, mut w) = (eu[l], ev[l], ew[l]);
-        let mut ts = t_scaled[l];
-        if u == 0.0 || v == 0.0 || w == 0.0 {
-            // The rare exact-zero case: recompute as the scalar test does.
-            let ax = a_x[l] - sh.sx * a_z[l];
-            let ay = a_y[l] - sh.sy * a_z[l];
-            let bx = b_x[l] - sh.sx * b_z[l];
-            let by = b_y[l] - sh.sy * b_z[l];
-            let cx = c_x[l] - sh.sx * c_z[l];
-            let cy = c_y[l] - sh.sy * c_z[l];
-            u = (cx as f64 * by as f64 - cy as f64 * bx as f64) as f32;
-            v = (ax as f64 * cy as f64 - ay as f64 * cx as f64) as f32;
-            w = (bx as f64 * ay as f64 - by as f64 * ax as f64) as f32;
-            ts = u * (sh.sz * a_z[l]) + v * (sh.sz * b_z[l]) + w * (sh.sz * c_z[l]);
-        }
-        if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
-            continue;
-        }
-        let det = u + v + w;
-        if det == 0.0 {
-            continue;
-        }
-        let inv = 1.0 / det;
-        let t = ts * inv;
-        if t > t_min && t < t_max {
-            out.t[l] = t;
-            out.u[l] = v * inv;
-            out.v[l] = w * inv;
+        if let Some(h) = sheared[l].finish(sh, edges[l], t_scaled[l], t_min, t_max) {
+            out.t[l] = h.t;
+            out.u[l] = h.u;
+            out.v[l] = h.v;
         }
     }
     out
