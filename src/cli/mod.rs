@@ -59,6 +59,41 @@ pub enum DefaultLights {
     Off,
 }
 
+/// Image size, sampling and backend: the flags every rendering command shares.
+#[derive(clap::Args, Debug)]
+pub struct ImageArgs {
+    #[arg(long, default_value_t = 800)]
+    pub width: usize,
+    #[arg(long, default_value_t = 600)]
+    pub height: usize,
+    /// Samples per pixel.
+    #[arg(long, default_value_t = 16)]
+    pub spp: u32,
+    /// Bounces after the camera ray (1 = direct light only).
+    #[arg(long, default_value_t = 5)]
+    pub max_depth: u32,
+    /// Ray-tracing backend: embree, bvh, grid (or obvhs, when built with that feature).
+    #[arg(long, default_value_t = Backend::default_available())]
+    pub backend: Backend,
+}
+
+impl ImageArgs {
+    /// Refuses sizes and sample counts that cannot be rendered (or would not fit in memory).
+    pub fn validate(&self) -> Result<()> {
+        let (w, h) = (self.width, self.height);
+        if w == 0 || h == 0 || w > MAX_EDGE || h > MAX_EDGE {
+            bail!("image size {w}x{h} is out of range (1..={MAX_EDGE} per edge)");
+        }
+        if w * h > MAX_PIXELS {
+            bail!("image size {w}x{h} is out of range (at most {MAX_PIXELS} pixels)");
+        }
+        if self.spp == 0 || self.spp > 1 << 20 {
+            bail!("--spp {} is out of range (1..={})", self.spp, 1 << 20);
+        }
+        Ok(())
+    }
+}
+
 impl DefaultLights {
     /// Whether the rig goes into this scene.
     pub fn wanted(self, scene: &Scene) -> bool {
@@ -91,19 +126,8 @@ pub struct RenderArgs {
     /// Output image: .png or .exr.
     #[arg(short, long)]
     pub output: PathBuf,
-    #[arg(long, default_value_t = 800)]
-    pub width: usize,
-    #[arg(long, default_value_t = 600)]
-    pub height: usize,
-    /// Samples per pixel.
-    #[arg(long, default_value_t = 16)]
-    pub spp: u32,
-    /// Bounces after the camera ray (1 = direct light only).
-    #[arg(long, default_value_t = 5)]
-    pub max_depth: u32,
-    /// Ray-tracing backend: embree or bvh.
-    #[arg(long, default_value_t = Backend::default_available())]
-    pub backend: Backend,
+    #[command(flatten)]
+    pub image: ImageArgs,
     /// Camera of the file to use, by index or name (default: the first; framed when the file has none).
     #[arg(long)]
     pub camera: Option<String>,
@@ -259,7 +283,7 @@ pub(crate) fn print_out(text: &str) -> Result<()> {
 /// The camera to render through: the file's (by `--camera`), or one framing the model, then adjusted
 /// by `--eye`, `--look-at`, `--up` and `--fov`.
 fn choose_camera(scene: &Scene, args: &RenderArgs) -> Result<Camera> {
-    let aspect = args.width as f32 / args.height as f32;
+    let aspect = args.image.width as f32 / args.image.height as f32;
     let fov = args.fov.map(|f| f.to_radians());
     if let Some(f) = fov {
         if !(f > 0.0 && f < std::f32::consts::PI) {
@@ -324,23 +348,7 @@ fn choose_camera(scene: &Scene, args: &RenderArgs) -> Result<Camera> {
 }
 
 fn render_command(args: RenderArgs) -> Result<()> {
-    if args.width == 0 || args.height == 0 || args.width > MAX_EDGE || args.height > MAX_EDGE {
-        bail!(
-            "image size {}x{} is out of range (1..={MAX_EDGE} per edge)",
-            args.width,
-            args.height
-        );
-    }
-    if args.width * args.height > MAX_PIXELS {
-        bail!(
-            "image size {}x{} is out of range (at most {MAX_PIXELS} pixels)",
-            args.width,
-            args.height
-        );
-    }
-    if args.spp == 0 || args.spp > 1 << 20 {
-        bail!("--spp {} is out of range (1..={})", args.spp, 1 << 20);
-    }
+    args.image.validate()?;
     // Fail on a bad output name before spending time on the render.
     film::Format::from_path(&args.output)?;
     if let Some(map) = &args.spp_map {
@@ -368,7 +376,7 @@ fn render_command(args: RenderArgs) -> Result<()> {
     let scene = Arc::new(scene);
 
     let t1 = Instant::now();
-    let accel = accel::build(scene.clone(), args.backend)?;
+    let accel = accel::build(scene.clone(), args.image.backend)?;
     let build_s = t1.elapsed().as_secs_f64();
 
     let progress = progress_bar(
@@ -376,10 +384,10 @@ fn render_command(args: RenderArgs) -> Result<()> {
         "{spinner} rendering [{bar:40}] {percent}% tiles, eta {eta}",
     );
     let settings = RenderSettings {
-        width: args.width,
-        height: args.height,
-        spp: args.spp,
-        max_depth: args.max_depth,
+        width: args.image.width,
+        height: args.image.height,
+        spp: args.image.spp,
+        max_depth: args.image.max_depth,
         seed: args.seed,
         sampler: args.sampler,
         filter: args.filter,
@@ -404,7 +412,7 @@ fn render_command(args: RenderArgs) -> Result<()> {
         };
         let values: Vec<f32> = out.spp.iter().map(|&n| n as f32 * scale).collect();
         film::write(
-            &film::Image::from_scalars(args.width, args.height, &values),
+            &film::Image::from_scalars(args.image.width, args.image.height, &values),
             path,
             0.0,
         )?;
@@ -424,8 +432,8 @@ fn render_command(args: RenderArgs) -> Result<()> {
         eprintln!(
             "{}: {}x{} at {} spp with {} in {:.2} s: {} rays, {:.2} Mrays/s (load {:.2} s, build {:.3} s)",
             args.output.display(),
-            args.width,
-            args.height,
+            args.image.width,
+            args.image.height,
             spp_text,
             accel.name(),
             stats.seconds,

@@ -8,8 +8,8 @@ use std::time::Instant;
 use anyhow::{bail, Context, Result};
 use clap::ValueEnum;
 
-use super::{load, progress_bar, DefaultLights, MAX_EDGE};
-use crate::accel::{self, Backend};
+use super::{load, progress_bar, DefaultLights, ImageArgs};
+use crate::accel;
 use crate::film::Format;
 use crate::render::RenderSettings;
 use crate::scene::defaults;
@@ -87,19 +87,8 @@ pub struct TurntableArgs {
     /// PNG grid of all frames, built once every frame is on disk.
     #[arg(long)]
     pub contact_sheet: Option<PathBuf>,
-    #[arg(long, default_value_t = 800)]
-    pub width: usize,
-    #[arg(long, default_value_t = 600)]
-    pub height: usize,
-    /// Samples per pixel.
-    #[arg(long, default_value_t = 16)]
-    pub spp: u32,
-    /// Bounces after the camera ray (1 = direct light only).
-    #[arg(long, default_value_t = 5)]
-    pub max_depth: u32,
-    /// Ray-tracing backend: embree or bvh.
-    #[arg(long, default_value_t = Backend::default_available())]
-    pub backend: Backend,
+    #[command(flatten)]
+    pub image: ImageArgs,
     /// Exposure in stops, applied to PNG frames and previews (the same on every frame).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub exposure: f32,
@@ -129,16 +118,7 @@ fn check_extension(path: &Path, ext: &str, flag: &str) -> Result<()> {
 }
 
 pub fn run(args: TurntableArgs) -> Result<()> {
-    if args.width == 0 || args.height == 0 || args.width > MAX_EDGE || args.height > MAX_EDGE {
-        bail!(
-            "image size {}x{} is out of range (1..={MAX_EDGE} per edge)",
-            args.width,
-            args.height
-        );
-    }
-    if args.spp == 0 || args.spp > 1 << 20 {
-        bail!("--spp {} is out of range (1..={})", args.spp, 1 << 20);
-    }
+    args.image.validate()?;
     if !(args.elevation > -90.0 && args.elevation < 90.0) {
         bail!("--elevation must be between -90 and 90 degrees (exclusive)");
     }
@@ -233,7 +213,7 @@ fn render_frames(
     let mut scene = load(&args.input)?;
     let load_s = t0.elapsed().as_secs_f64();
 
-    let aspect = args.width as f32 / args.height as f32;
+    let aspect = args.image.width as f32 / args.image.height as f32;
     let mut orbit = Orbit::framing(&scene.bounds(), yfov, aspect, args.elevation.to_radians());
     orbit.start_azimuth = args.azimuth.to_radians();
     if let Some(d) = args.distance {
@@ -254,10 +234,10 @@ fn render_frames(
         },
         shutter_angle,
         settings: RenderSettings {
-            width: args.width,
-            height: args.height,
-            spp: args.spp,
-            max_depth: args.max_depth,
+            width: args.image.width,
+            height: args.image.height,
+            spp: args.image.spp,
+            max_depth: args.image.max_depth,
             seed: args.seed,
             ..Default::default()
         },
@@ -272,7 +252,7 @@ fn render_frames(
     let scene = Arc::new(scene);
 
     let t1 = Instant::now();
-    let accel = accel::build(scene.clone(), args.backend)?;
+    let accel = accel::build(scene.clone(), args.image.backend)?;
     let build_s = t1.elapsed().as_secs_f64();
 
     let progress = progress_bar(
@@ -289,9 +269,9 @@ fn render_frames(
             report.skipped.len(),
             selected.len(),
             args.frames,
-            args.width,
-            args.height,
-            args.spp,
+            args.image.width,
+            args.image.height,
+            args.image.spp,
             accel.name(),
         );
         eprintln!(
