@@ -3,6 +3,13 @@
 
 use glam::Vec3;
 
+/// gamma(n) of pbrt: a bound on the relative error of n floating-point operations (n ulps / 2, exact
+/// to first order), for conservative tests such as slab distances.
+pub const fn gamma(n: i32) -> f32 {
+    let e = f32::EPSILON * 0.5 * n as f32;
+    e / (1.0 - e)
+}
+
 /// A ray segment `o + t d` for `t` in `(t_min, t_max)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray {

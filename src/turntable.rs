@@ -9,7 +9,7 @@ use std::str::FromStr;
 use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
-use glam::{Mat3, Vec3};
+use glam::{Mat4, Vec3};
 use indicatif::ProgressBar;
 
 use crate::accel::Accel;
@@ -258,39 +258,10 @@ impl Orbit {
 
     /// A rotation by `angle` about the orbit axis, applied to a light.
     pub fn rotate_light(&self, light: &Light, angle: f32) -> Light {
-        let r = Mat3::from_rotation_y(angle);
-        let p = |x: Vec3| self.center + r * (x - self.center);
-        match light.clone() {
-            Light::Point {
-                position,
-                intensity,
-            } => Light::Point {
-                position: p(position),
-                intensity,
-            },
-            Light::Spot {
-                position,
-                direction,
-                intensity,
-                cos_inner,
-                cos_outer,
-            } => Light::Spot {
-                position: p(position),
-                direction: r * direction,
-                intensity,
-                cos_inner,
-                cos_outer,
-            },
-            Light::Directional {
-                direction,
-                irradiance,
-            } => Light::Directional {
-                direction: r * direction,
-                irradiance,
-            },
-            // Constant in every direction: a rotation leaves it unchanged.
-            env @ Light::Environment { .. } => env,
-        }
+        let about_center = Mat4::from_translation(self.center)
+            * Mat4::from_rotation_y(angle)
+            * Mat4::from_translation(-self.center);
+        light.transformed(&about_center)
     }
 }
 

@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use super::flat::{self, TriId};
 use super::triangle::{self, RayShear, Tri4};
 use super::Accel;
-use crate::geometry::{Aabb, Hit, Ray};
+use crate::geometry::{gamma, Aabb, Hit, Ray};
 use crate::scene::Scene;
 
 /// Number of SAH bins per axis.
@@ -299,12 +299,6 @@ fn collapse(src: &Source, at: usize, out: &mut Collapsed) -> u32 {
         node.count[lane] = count;
     }
     index as u32
-}
-
-/// gamma(n) of pbrt: a bound on the relative error of n floating-point operations.
-const fn gamma(n: i32) -> f32 {
-    let e = f32::EPSILON * 0.5 * n as f32;
-    e / (1.0 - e)
 }
 
 /// Builds the binary tree over `refs` (reordering them in place into leaf order); leaves index into

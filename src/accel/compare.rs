@@ -43,12 +43,8 @@ pub fn random_rays(scene: &Scene, n: usize, seed: u64) -> Vec<Ray> {
                 return Ray::new(o, dir);
             }
             let k = ((h(2) as f64 * total as f64) as usize).min(total - 1);
-            let inst_idx = offsets.partition_point(|&o| o <= k) - 1;
-            let inst = &scene.instances[inst_idx];
-            let mesh = &scene.meshes[inst.mesh as usize];
-            let tri = mesh
-                .triangle((k - offsets[inst_idx]) as u32)
-                .map(|p| inst.to_world.transform_point3(p));
+            let inst = offsets.partition_point(|&o| o <= k) - 1;
+            let tri = scene.world_triangle(inst as u32, (k - offsets[inst]) as u32);
             let (s, t) = (h(3).sqrt(), h(4));
             let target = tri[0] * (1.0 - s) + tri[1] * (s * (1.0 - t)) + tri[2] * (s * t);
             let o = center + dir * radius;
@@ -120,11 +116,7 @@ fn on_alpha_edge(scene: &Scene, hit: &Option<Hit>) -> bool {
 
 /// World-space distance from a hit to the nearest edge of its triangle.
 fn edge_distance(scene: &Scene, h: &Hit) -> f32 {
-    let inst = &scene.instances[h.inst as usize];
-    let [a, b, c] = scene
-        .mesh_of(h.inst)
-        .triangle(h.prim)
-        .map(|p| inst.to_world.transform_point3(p));
+    let [a, b, c] = scene.world_triangle(h.inst, h.prim);
     let twice_area = (b - a).cross(c - a).length();
     // Barycentric weight of a vertex times the height over the opposite edge.
     let (wa, wb, wc) = (1.0 - h.u - h.v, h.u, h.v);
@@ -199,11 +191,7 @@ fn object_magnitudes(scene: &Scene) -> Vec<f32> {
 
 /// |cos| of the angle between the ray and the hit triangle's normal.
 fn incidence(scene: &Scene, ray: &Ray, h: &Hit) -> f32 {
-    let inst = &scene.instances[h.inst as usize];
-    let [a, b, c] = scene
-        .mesh_of(h.inst)
-        .triangle(h.prim)
-        .map(|p| inst.to_world.transform_point3(p));
+    let [a, b, c] = scene.world_triangle(h.inst, h.prim);
     let n = (b - a).cross(c - a).normalize_or_zero();
     n.dot(ray.d.normalize()).abs()
 }

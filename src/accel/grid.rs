@@ -19,7 +19,7 @@ use rayon::prelude::*;
 use super::flat::{flatten, TriId};
 use super::triangle::{self, RayShear};
 use super::Accel;
-use crate::geometry::{Aabb, Hit, Ray};
+use crate::geometry::{gamma, Aabb, Hit, Ray};
 use crate::scene::Scene;
 
 /// Cells per triangle the resolution aims at (measured: see `GridAccel::build_with`).
@@ -406,12 +406,6 @@ fn resolution(extent: Vec3, n: usize, lambda: f32) -> [u32; 3] {
         res = res.map(|r| ((r as f64 * s).floor() as u32).max(1));
     }
     res
-}
-
-/// gamma(n) of pbrt: a bound on the relative error of n floating-point operations.
-const fn gamma(n: i32) -> f32 {
-    let e = f32::EPSILON * 0.5 * n as f32;
-    e / (1.0 - e)
 }
 
 impl Accel for GridAccel {

@@ -317,11 +317,7 @@ mod tests {
             if (h.inst, h.prim) != (b.inst, b.prim) {
                 continue;
             }
-            let inst = &s.instances[h.inst as usize];
-            let [p0, p1, p2] = s
-                .mesh_of(h.inst)
-                .triangle(h.prim)
-                .map(|p| inst.to_world.transform_point3(p));
+            let [p0, p1, p2] = s.world_triangle(h.inst, h.prim);
             // Skip grazing hits, where t, u, v are ill-conditioned.
             let n = (p1 - p0).cross(p2 - p0).normalize();
             if n.dot(ray.d.normalize()).abs() < 0.1 {

@@ -18,9 +18,8 @@ pub fn brute(s: &Scene, ray: &Ray) -> Option<(f32, u32, u32)> {
     let sh = RayShear::new(ray.d);
     let mut best: Option<(f32, u32, u32)> = None;
     for (i, inst) in s.instances.iter().enumerate() {
-        let m = &s.meshes[inst.mesh as usize];
-        for p in 0..m.indices.len() as u32 {
-            let [a, b, c] = m.triangle(p).map(|v| inst.to_world.transform_point3(v));
+        for p in 0..s.meshes[inst.mesh as usize].indices.len() as u32 {
+            let [a, b, c] = s.world_triangle(i as u32, p);
             let t_max = best.map_or(ray.t_max, |b| b.0);
             if let Some(h) = triangle::intersect(ray.o, &sh, a, b, c, ray.t_min, t_max) {
                 best = Some((h.t, i as u32, p));

@@ -134,11 +134,7 @@ pub fn generate_rays(scene: &Scene, accel: &dyn Accel, width: usize, height: usi
         .enumerate()
         .filter_map(|(i, r)| {
             let h = accel.intersect(r)?;
-            let inst = &scene.instances[h.inst as usize];
-            let [a, b, c] = scene
-                .mesh_of(h.inst)
-                .triangle(h.prim)
-                .map(|p| inst.to_world.transform_point3(p));
+            let [a, b, c] = scene.world_triangle(h.inst, h.prim);
             let mut n = (b - a).cross(c - a).normalize_or_zero();
             if n == Vec3::ZERO {
                 return None;

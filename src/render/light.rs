@@ -80,7 +80,7 @@ impl LightSet {
             }
             first_triangle[i] = entries.len() as u32;
             for p in 0..mesh.indices.len() as u32 {
-                let v = mesh.triangle(p).map(|q| inst.to_world.transform_point3(q));
+                let v = scene.world_triangle(i as u32, p);
                 let area = 0.5 * (v[1] - v[0]).cross(v[2] - v[0]).length();
                 entries.push(Entry::Triangle {
                     inst: i as u32,

@@ -198,6 +198,44 @@ pub enum Light {
     Environment { radiance: Vec3 },
 }
 
+impl Light {
+    /// The light moved by an affine transform: positions as points, directions as vectors (renormalised).
+    pub fn transformed(&self, m: &Mat4) -> Light {
+        let dir = |d: Vec3| m.transform_vector3(d).normalize_or_zero();
+        match *self {
+            Light::Point {
+                position,
+                intensity,
+            } => Light::Point {
+                position: m.transform_point3(position),
+                intensity,
+            },
+            Light::Spot {
+                position,
+                direction,
+                intensity,
+                cos_inner,
+                cos_outer,
+            } => Light::Spot {
+                position: m.transform_point3(position),
+                direction: dir(direction),
+                intensity,
+                cos_inner,
+                cos_outer,
+            },
+            Light::Directional {
+                direction,
+                irradiance,
+            } => Light::Directional {
+                direction: dir(direction),
+                irradiance,
+            },
+            // Constant in every direction: no transform changes it.
+            Light::Environment { radiance } => Light::Environment { radiance },
+        }
+    }
+}
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Projection {
     /// Vertical field of view in radians; aspect ratio from the file, or from the image when absent.
@@ -314,6 +352,14 @@ impl Scene {
 
     pub fn mesh_of(&self, inst: u32) -> &Mesh {
         &self.meshes[self.instances[inst as usize].mesh as usize]
+    }
+
+    /// The world-space vertices of triangle `prim` of instance `inst`.
+    pub fn world_triangle(&self, inst: u32, prim: u32) -> [Vec3; 3] {
+        let instance = &self.instances[inst as usize];
+        self.meshes[instance.mesh as usize]
+            .triangle(prim)
+            .map(|p| instance.to_world.transform_point3(p))
     }
 
     pub fn material_of_mesh(&self, mesh: u32) -> &Material {
