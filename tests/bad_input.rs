@@ -286,3 +286,33 @@ fn unknown_extension() {
     let p = write(dir.path(), "model.ply", b"ply\n");
     load_err(&p, &["unsupported file type"]);
 }
+
+#[test]
+fn scene_file_errors_name_file_and_line() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "t.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    let cases: [(&str, &[&str]); 6] = [
+        (
+            "[[asset]]\npath = \"missing.glb\"\n",
+            &["line 2", "missing.glb", "no such file"],
+        ),
+        (
+            "[[asset]]\npath = \"t.obj\"\ncolour = 1\n",
+            &["line 3", "colour"],
+        ),
+        ("[render]\nspp = -4\n", &["line 2", "spp"]),
+        ("[[light]]\ntype = \"laser\"\n", &["line 2", "laser"]),
+        (
+            "[[asset]]\npath = \"t.obj\"\ntransform = { scale = 0 }\n",
+            &["line 2", "singular"],
+        ),
+        (
+            "[[material]]\nname = \"m\"\nroughness = 2\n",
+            &["line 1", "roughness"],
+        ),
+    ];
+    for (i, (text, words)) in cases.iter().enumerate() {
+        let p = write(dir.path(), &format!("s{i}.toml"), text.as_bytes());
+        load_err(&p, words);
+    }
+}

@@ -165,3 +165,37 @@ fn a_reader_that_goes_away_is_not_a_crash() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(!stderr(&o).contains("panicked"), "{}", stderr(&o));
 }
+
+#[test]
+fn scene_file_settings_apply_unless_a_flag_is_given() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("s.toml");
+    std::fs::write(
+        &scene,
+        format!(
+            "[render]\nwidth = 24\nheight = 18\nspp = 2\n\n[[asset]]\npath = {:?}\n\n\
+             [[light]]\ntype = \"environment\"\nstrength = 0.5\n",
+            demo()
+        ),
+    )
+    .unwrap();
+    let out = dir.path().join("a.png");
+    let o = glint(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(image::image_dimensions(&out).unwrap(), (24, 18));
+    let o = glint(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--width",
+        "30",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(image::image_dimensions(&out).unwrap(), (30, 18));
+}

@@ -188,6 +188,69 @@ pub struct RenderArgs {
     /// Also write the samples each pixel took (.exr: counts; .png: counts / the most).
     #[arg(long)]
     pub spp_map: Option<PathBuf>,
+    /// Flags given on the command line (they win over a scene file's [render] settings).
+    #[arg(skip)]
+    pub explicit: Vec<String>,
+}
+
+impl RenderArgs {
+    /// Takes a scene file's render settings for every flag the command line left at its default.
+    fn apply_file_settings(&mut self, s: &crate::scene::desc::FileSettings) -> Result<()> {
+        let free = |id: &str| !self.explicit.iter().any(|e| e == id);
+        let (w, h, spp, depth, seed) = (
+            free("width"),
+            free("height"),
+            free("spp"),
+            free("max_depth"),
+            free("seed"),
+        );
+        let (sampler, filter, backend) = (free("sampler"), free("filter"), free("backend"));
+        let img = &mut self.image;
+        if let Some(v) = s.width.filter(|_| w) {
+            img.width = v;
+        }
+        if let Some(v) = s.height.filter(|_| h) {
+            img.height = v;
+        }
+        if let Some(v) = s.spp.filter(|_| spp) {
+            img.spp = v;
+        }
+        if let Some(v) = s.max_depth.filter(|_| depth) {
+            img.max_depth = v;
+        }
+        if let Some(v) = s.seed.filter(|_| seed) {
+            self.seed = v;
+        }
+        if let Some(v) = s.sampler.filter(|_| sampler) {
+            self.sampler = v;
+        }
+        if let Some(v) = s.filter.filter(|_| filter) {
+            self.filter = v;
+        }
+        if let Some(v) = s.backend.as_ref().filter(|_| backend) {
+            img.backend = v.parse().map_err(|e: String| {
+                anyhow::anyhow!("{}: [render] backend: {e}", self.input.display())
+            })?;
+        }
+        Ok(())
+    }
+}
+
+/// Parses the process's arguments, remembering which flags were given explicitly, and runs them.
+pub fn main() -> Result<()> {
+    use clap::{CommandFactory, FromArgMatches};
+    let matches = Cli::command().get_matches();
+    let mut cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
+    if let (Command::Render(args), Some((_, sub))) = (&mut cli.command, matches.subcommand()) {
+        args.explicit = sub
+            .ids()
+            .filter(|id| {
+                sub.value_source(id.as_str()) == Some(clap::parser::ValueSource::CommandLine)
+            })
+            .map(|id| id.to_string())
+            .collect();
+    }
+    run(cli)
 }
 
 /// A duration such as `30s`, `1.5m`, `500ms` or `20` (seconds).
@@ -347,8 +410,7 @@ fn choose_camera(scene: &Scene, args: &RenderArgs) -> Result<Camera> {
     Ok(camera)
 }
 
-fn render_command(args: RenderArgs) -> Result<()> {
-    args.image.validate()?;
+fn render_command(mut args: RenderArgs) -> Result<()> {
     // Fail on a bad output name before spending time on the render.
     film::Format::from_path(&args.output)?;
     if let Some(map) = &args.spp_map {
@@ -369,6 +431,8 @@ fn render_command(args: RenderArgs) -> Result<()> {
     let t0 = Instant::now();
     let mut scene = load(&args.input)?;
     let load_s = t0.elapsed().as_secs_f64();
+    args.apply_file_settings(&scene.settings)?;
+    args.image.validate()?;
     let camera = choose_camera(&scene, &args)?;
     if args.default_lights.wanted(&scene) {
         scene.lights.extend(defaults::light_rig(&camera.to_world));

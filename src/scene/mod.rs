@@ -2,11 +2,13 @@
 //! Loaders (`gltf`, `obj`) produce it; accelerators and the integrator only read it.
 
 pub mod defaults;
+pub mod desc;
 pub mod error;
 pub mod generate;
 pub mod gltf;
 pub mod obj;
 pub mod texture;
+pub mod transform;
 
 use std::path::{Path, PathBuf};
 
@@ -293,10 +295,12 @@ pub struct Scene {
     pub stats: SceneStats,
     /// Non-fatal problems met while loading (skipped primitives, dropped triangles), one line each.
     pub warnings: Vec<String>,
+    /// Render settings from a scene file (empty for model files).
+    pub settings: desc::FileSettings,
 }
 
 impl Scene {
-    /// Loads a .gltf, .glb or .obj file, chosen by extension.
+    /// Loads a .gltf, .glb, .obj or .toml (scene) file, chosen by extension.
     pub fn load(path: &Path) -> Result<Scene, LoadError> {
         let ext = path
             .extension()
@@ -309,10 +313,11 @@ impl Scene {
         let mut scene = match ext.as_str() {
             "gltf" | "glb" => gltf::load(path)?,
             "obj" => obj::load(path)?,
+            "toml" => desc::load(path)?,
             _ => {
                 return Err(LoadError::new(
                     path,
-                    format!("unsupported file type '.{ext}' (expected .gltf, .glb or .obj)"),
+                    format!("unsupported file type '.{ext}' (expected .gltf, .glb, .obj or .toml)"),
                 ))
             }
         };
@@ -348,6 +353,60 @@ impl Scene {
             }
         }
         Ok(())
+    }
+
+    /// Moves everything of `other` into this scene, placed by `to_world`; its material `i` becomes
+    /// this scene's `remap[i]` where given, and a copy otherwise.
+    pub fn append(
+        &mut self,
+        other: Scene,
+        to_world: Mat4,
+        remap: &std::collections::HashMap<usize, u32>,
+    ) {
+        let (mesh0, tex0) = (self.meshes.len() as u32, self.textures.len() as u32);
+        let mut material_index = Vec::with_capacity(other.materials.len());
+        for (i, mut m) in other.materials.into_iter().enumerate() {
+            if let Some(&k) = remap.get(&i) {
+                material_index.push(k);
+                continue;
+            }
+            for t in [
+                &mut m.base_color_tex,
+                &mut m.metallic_roughness_tex,
+                &mut m.normal_tex,
+                &mut m.emissive_tex,
+            ]
+            .into_iter()
+            .flatten()
+            {
+                t.texture += tex0;
+            }
+            material_index.push(self.materials.len() as u32);
+            self.materials.push(m);
+        }
+        self.textures.extend(other.textures);
+        self.meshes.extend(other.meshes.into_iter().map(|mut m| {
+            m.material = material_index[m.material as usize];
+            m
+        }));
+        self.instances.extend(
+            other
+                .instances
+                .iter()
+                .map(|i| Instance::new(i.mesh + mesh0, to_world * i.to_world)),
+        );
+        self.lights
+            .extend(other.lights.iter().map(|l| l.transformed(&to_world)));
+        self.cameras.extend(other.cameras.into_iter().map(|mut c| {
+            c.to_world = to_world * c.to_world;
+            c
+        }));
+        let (s, o) = (&mut self.stats, &other.stats);
+        s.nodes += o.nodes;
+        s.meshes += o.meshes;
+        s.primitives += o.primitives;
+        s.textures += o.textures;
+        s.animations += o.animations;
     }
 
     pub fn mesh_of(&self, inst: u32) -> &Mesh {
