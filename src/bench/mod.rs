@@ -1,6 +1,7 @@
 //! Benchmarks that glint runs on itself: ray throughput per backend (`rays`), error against
-//! time per sampler and adaptive mode (`convergence`).
+//! time per sampler and adaptive mode (`convergence`), tests saved by cheap pretests (`fastfail`).
 //! Each measures on identical inputs and reports ratios from one run, since machines are noisy.
 
 pub mod convergence;
+pub mod fastfail;
 pub mod rays;

@@ -17,6 +17,22 @@ pub enum BenchCommand {
     /// Error against render time for each sampler and adaptive mode, against a cached converged
     /// reference: CSV, log-log plot, fitted convergence slopes.
     Convergence(ConvergenceArgs),
+    /// How many ray/triangle tests cheap per-object tests (bounding sphere, box, nearest-first
+    /// order) save over brute force, on the same primary, shadow and diffuse rays.
+    FastFailure(FastFailureArgs),
+}
+
+#[derive(clap::Args, Debug)]
+pub struct FastFailureArgs {
+    /// A .gltf, .glb, .obj or .toml file, or `icosphere:N`.
+    pub input: String,
+    /// Rays per kind (an even sample of the full set; brute force is slow).
+    #[arg(long, default_value_t = 20_000)]
+    pub rays: usize,
+    #[arg(long, default_value_t = 320)]
+    pub width: usize,
+    #[arg(long, default_value_t = 240)]
+    pub height: usize,
 }
 
 #[derive(clap::Args, Debug)]
@@ -121,6 +137,12 @@ pub fn run(cmd: BenchCommand) -> Result<()> {
             let report = convergence::run(&a.input, &a.out, &config, !a.quiet)?;
             super::print_out(&report.table())?;
             Ok(())
+        }
+        BenchCommand::FastFailure(a) => {
+            use crate::bench::fastfail;
+            let rows = fastfail::run(&a.input, a.width.max(1), a.height.max(1), a.rays)?;
+            let objects = rays::load_input(&a.input)?.instances.len();
+            super::print_out(&fastfail::table(&a.input, objects, &rows))
         }
         BenchCommand::Rays(a) => {
             let config = RaysConfig {
