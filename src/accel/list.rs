@@ -167,7 +167,7 @@ impl ObjectList {
             // and product.
             let near = t0.min(t1).max_element().max(ray.t_min);
             let far = t0.max(t1).min_element() * (1.0 + 2.0 * gamma(3));
-            if !(near <= far) || far < ray.t_min {
+            if near > far || far < ray.t_min || near.is_nan() || far.is_nan() {
                 tally.box_rejects += 1;
                 return None;
             }
