@@ -60,6 +60,8 @@ pub struct Bsdf {
     /// Thin-walled (glTF transmission without KHR_materials_volume): light passes straight through
     /// without bending, and there is no inside.
     pub thin: bool,
+    /// The frame normal's side is outside the object (always, for opaque and thin surfaces).
+    pub outside: bool,
     /// Absorption coefficient (per unit length) of the medium behind a thick transmissive surface
     /// (KHR_materials_volume), applied along the path segments inside it.
     pub absorption: Vec3,
@@ -105,6 +107,7 @@ impl Bsdf {
             transmission: 0.0,
             eta: 1.5,
             thin: true,
+            outside: true,
             absorption: Vec3::ZERO,
         }
     }
@@ -127,11 +130,8 @@ impl Bsdf {
         self.transmission = transmission.clamp(0.0, 1.0);
         self.thin = thin || self.transmission == 0.0;
         // Opaque and thin surfaces have no inside: every hit comes from the outside.
-        self.eta = if self.thin || entering {
-            ior
-        } else {
-            1.0 / ior
-        };
+        self.outside = self.thin || entering;
+        self.eta = if self.outside { ior } else { 1.0 / ior };
         self
     }
 

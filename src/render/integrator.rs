@@ -204,7 +204,7 @@ impl<'a> Integrator<'a> {
             beta *= s.f * (cos.abs() / s.pdf);
             if cos < 0.0 && !si.bsdf.thin {
                 // Crossing into or out of a thick transmissive object.
-                medium = if s.eta > 1.0 {
+                medium = if si.bsdf.outside {
                     si.bsdf.absorption
                 } else {
                     Vec3::ZERO
