@@ -140,6 +140,12 @@ impl Bsdf {
         self.alpha == 0.0 && (self.metallic == 1.0 || self.transmission == 1.0)
     }
 
+    /// A thick surface between equal indices: rough or not, it refracts nothing (the microfacet
+    /// half vector of Walter et al. degenerates there), so its transmission is a straight delta.
+    fn index_matched(&self) -> bool {
+        !self.thin && (self.eta - 1.0).abs() < 1e-3
+    }
+
     /// Whether light can arrive from behind the surface.
     pub fn transmits(&self) -> bool {
         self.transmission > 0.0 && self.metallic < 1.0
@@ -223,7 +229,7 @@ impl Bsdf {
             }
             return (f, pdf);
         }
-        if smooth || !self.transmits() {
+        if smooth || !self.transmits() || self.index_matched() {
             return (Vec3::ZERO, 0.0);
         }
         let tint = self.base * ((1.0 - self.metallic) * self.transmission);
@@ -288,7 +294,7 @@ impl Bsdf {
             let i = Vec3::new(-o.x, -o.y, o.z);
             return out(i, self.fresnel(o.z) / o.z, lobes.reflect, true, false, 1.0);
         }
-        if smooth && pick_transmit {
+        if (smooth || self.index_matched()) && pick_transmit {
             let tint = self.base * ((1.0 - self.metallic) * self.transmission);
             let t = 1.0 - self.fresnel_dielectric(o.z);
             if self.thin {
@@ -610,6 +616,21 @@ mod tests {
                 }
             }
             assert!(refl && trans);
+        }
+    }
+
+    /// Between equal indices roughness cannot bend light: a rough boundary of ior 1 passes it straight.
+    #[test]
+    fn index_matched_rough_boundary_is_straight() {
+        let frame = Frame::from_normal(Vec3::Z);
+        let b = Bsdf::new(frame, Vec3::ONE, 0.0, 0.8, 1.0).with_dielectric(1.0, 1.0, false, true);
+        let wo = Vec3::new(0.6, 0.0, 0.8);
+        for k in 0..100 {
+            let s = b
+                .sample(wo, hash(k), Vec2::new(hash(k + 1), hash(k + 2)))
+                .unwrap();
+            assert!(s.delta && (s.wi + wo).length() < 1e-6);
+            assert!((s.f.x * s.wi.z.abs() / s.pdf - 1.0).abs() < 1e-5);
         }
     }
 
