@@ -50,6 +50,10 @@ impl SurfaceInteraction {
         let interp_n = (inst.normal_to_world
             * (mesh.normals[i0] * w + mesh.normals[i1] * u + mesh.normals[i2] * v))
             .normalize_or_zero();
+        // The outside is where the vertex normals point (robust to mirrored instances and to
+        // either winding); a ray arriving from there enters a transmissive object.
+        let outward = if ng.dot(interp_n) < 0.0 { -ng } else { ng };
+        let entering = outward.dot(ray.d) < 0.0;
         let mut n = if interp_n == Vec3::ZERO { ng } else { interp_n };
         // Two-sided shading: both normals face where the ray came from.
         if ng.dot(ray.d) > 0.0 {
@@ -78,17 +82,24 @@ impl SurfaceInteraction {
             roughness *= mr.y;
             metallic *= mr.z;
         }
+        let transmission = match tex(scene, mat.transmission_tex, uv) {
+            Some(t) => mat.transmission * t.x,
+            None => mat.transmission,
+        };
+        let mut bsdf = Bsdf::new(
+            Frame::from_normal(n),
+            base.xyz(),
+            metallic,
+            roughness,
+            mat.specular,
+        )
+        .with_dielectric(transmission, mat.ior, mat.is_thin_walled(), entering);
+        bsdf.absorption = mat.absorption();
         Self {
             p,
             ng,
             uv,
-            bsdf: Bsdf::new(
-                Frame::from_normal(n),
-                base.xyz(),
-                metallic,
-                roughness,
-                mat.specular,
-            ),
+            bsdf,
             emission: emission(scene, mat, uv),
             inst: hit.inst,
             prim: hit.prim,

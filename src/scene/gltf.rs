@@ -791,6 +791,17 @@ impl Loader<'_> {
         if let Some(t) = m.emissive_texture() {
             mat.emissive_tex = self.tex_ref(TexInfo::from_info(&t), true, &label);
         }
+        if let Some(t) = m.transmission().and_then(|t| t.transmission_texture()) {
+            mat.transmission_tex = self.tex_ref(TexInfo::from_info(&t), false, &label);
+        }
+        // Without KHR_materials_volume a transmissive surface is thin-walled (thickness 0). The
+        // thickness texture only serves rasterisers; a path tracer measures the real thickness.
+        if let Some(v) = m.volume() {
+            mat.thickness = v.thickness_factor().max(0.0);
+            mat.attenuation_color = Vec3::from(v.attenuation_color()).clamp(Vec3::ZERO, Vec3::ONE);
+            let d = v.attenuation_distance();
+            mat.attenuation_distance = if d > 0.0 { d } else { f32::INFINITY };
+        }
         mat
     }
 

@@ -137,9 +137,21 @@ pub struct Material {
     pub double_sided: bool,
     /// Strength of the dielectric specular layer (KHR_materials_specular's factor; 0 = pure Lambert).
     pub specular: f32,
-    /// KHR_materials_transmission factor (the distribution issue refracts through it).
+    /// KHR_materials_transmission factor: the fraction of the light entering the dielectric base
+    /// that passes through the surface (0 = opaque).
     pub transmission: f32,
+    /// Multiplies `transmission` by its R channel.
+    pub transmission_tex: Option<TexRef>,
+    /// Index of refraction of the dielectric (KHR_materials_ior; sets F0 and the refraction).
     pub ior: f32,
+    /// KHR_materials_volume's thicknessFactor: 0 means thin-walled (light passes straight through
+    /// the surface unbent, as glTF treats transmission without a volume); above 0 the mesh bounds
+    /// a refracting medium whose real thickness the path tracer measures along each ray.
+    pub thickness: f32,
+    /// Beer-Lambert absorption of the medium: light keeps `attenuation_color` after travelling
+    /// `attenuation_distance` inside it (infinite: no absorption).
+    pub attenuation_color: Vec3,
+    pub attenuation_distance: f32,
 }
 
 impl Default for Material {
@@ -159,7 +171,11 @@ impl Default for Material {
             double_sided: false,
             specular: 1.0,
             transmission: 0.0,
+            transmission_tex: None,
             ior: 1.5,
+            thickness: 0.0,
+            attenuation_color: Vec3::ONE,
+            attenuation_distance: f32::INFINITY,
         }
     }
 }
@@ -167,6 +183,25 @@ impl Default for Material {
 impl Material {
     pub fn is_emissive(&self) -> bool {
         self.emissive.max_element() > 0.0
+    }
+
+    /// Whether light can pass through the surface (KHR_materials_transmission on a non-metal).
+    pub fn is_transmissive(&self) -> bool {
+        self.transmission > 0.0 && self.metallic < 1.0
+    }
+
+    /// Transmissive without a volume: the surface is a thin wall with no inside.
+    pub fn is_thin_walled(&self) -> bool {
+        self.thickness <= 0.0
+    }
+
+    /// The medium's absorption coefficient per unit length (zero when it does not absorb).
+    pub fn absorption(&self) -> Vec3 {
+        if !(self.attenuation_distance.is_finite() && self.attenuation_distance > 0.0) {
+            return Vec3::ZERO;
+        }
+        let c = self.attenuation_color.clamp(Vec3::splat(1e-6), Vec3::ONE);
+        -Vec3::new(c.x.ln(), c.y.ln(), c.z.ln()) / self.attenuation_distance
     }
 
     /// Whether hits on this material need an alpha test (cutouts or blending).

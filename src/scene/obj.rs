@@ -1,7 +1,11 @@
 //! OBJ + MTL loader, through `tobj` (triangulated, single index). Each tobj model (an `o`/`g` group,
 //! split again at every `usemtl`) becomes one `Mesh` with one identity `Instance`. MTL materials map
 //! onto the metallic-roughness `Material`: Kd -> base colour, Ns -> roughness, Ks -> specular strength,
-//! Ke -> emission, d -> alpha, Ni -> ior, map_Kd / map_Bump -> textures.
+//! Ke -> emission, d -> alpha, Ni -> ior, map_Kd / map_Bump -> textures. `d` (or `Tr`) stays alpha as
+//! coverage (the surface is partly absent), as glTF's alpha is; glass is named by the illumination
+//! model instead: `illum 6`/`7` (refraction on) give a thick refracting dielectric, `illum 4`/`9`
+//! (glass on) a thin-walled one, both fully transmissive, tinted by `Tf` (default white) in place of
+//! Kd, and then `d` does not also cut the surface away.
 
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -228,6 +232,20 @@ fn convert_material(
             .unwrap_or(1.5),
         ..Material::default()
     };
+    if let Some(illum @ (4 | 6 | 7 | 9)) = m.illumination_model {
+        let tf = m
+            .unknown_param
+            .get("Tf")
+            .and_then(|s| parse3(s))
+            .filter(|c| c.is_finite())
+            .unwrap_or(Vec3::ONE)
+            .clamp(Vec3::ZERO, Vec3::ONE);
+        mat.base_color = tf.extend(1.0);
+        mat.alpha_mode = AlphaMode::Opaque;
+        mat.transmission = 1.0;
+        mat.specular = 1.0;
+        mat.thickness = if matches!(illum, 6 | 7) { 1.0 } else { 0.0 };
+    }
     let label = format!("material '{}'", m.name);
     if let Some(t) = &m.diffuse_texture {
         mat.base_color_tex = texture(t, true, search, scene, textures, &label).map(TexRef::new);
@@ -391,5 +409,38 @@ mod tests {
         assert!(c.z > 0.9 && c.x < 0.1, "{c}");
         assert_eq!(s.stats.meshes, 2);
         assert_eq!(s.stats.materials, 2);
+    }
+
+    #[test]
+    fn illum_names_glass_and_d_stays_coverage() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(
+            dir.path().join("g.mtl"),
+            "newmtl thick\nKd 0 0 0\nNi 1.45\nd 0.2\nillum 7\nTf 0.9 1 0.8\n\
+             newmtl thin\nillum 4\nNs 1000\n\
+             newmtl veil\nKd 1 1 1\nd 0.3\nillum 2\n",
+        )
+        .unwrap();
+        let p = dir.path().join("g.obj");
+        std::fs::write(
+            &p,
+            "mtllib g.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n\
+             usemtl thick\nf 1 2 3\nusemtl thin\nf 1 2 3\nusemtl veil\nf 1 2 3\n",
+        )
+        .unwrap();
+        let s = Scene::load(&p).unwrap();
+        let thick = s.material_of_mesh(0);
+        assert_eq!(thick.transmission, 1.0);
+        assert!(!thick.is_thin_walled() && thick.is_transmissive());
+        assert!((thick.ior - 1.45).abs() < 1e-6);
+        assert_eq!(thick.base_color, Vec4::new(0.9, 1.0, 0.8, 1.0));
+        assert_eq!(thick.alpha_mode, AlphaMode::Opaque);
+        let thin = s.material_of_mesh(1);
+        assert!(thin.is_thin_walled() && thin.is_transmissive());
+        assert_eq!(thin.base_color, Vec4::ONE);
+        let veil = s.material_of_mesh(2);
+        assert_eq!(veil.transmission, 0.0);
+        assert_eq!(veil.alpha_mode, AlphaMode::Blend);
+        assert_eq!(veil.base_color.w, 0.3);
     }
 }
