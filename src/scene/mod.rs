@@ -181,6 +181,19 @@ impl Default for Material {
 }
 
 impl Material {
+    /// Every texture binding of the material (for renumbering when scenes are combined).
+    pub fn textures_mut(&mut self) -> impl Iterator<Item = &mut TexRef> {
+        [
+            &mut self.base_color_tex,
+            &mut self.metallic_roughness_tex,
+            &mut self.normal_tex,
+            &mut self.emissive_tex,
+            &mut self.transmission_tex,
+        ]
+        .into_iter()
+        .flatten()
+    }
+
     pub fn is_emissive(&self) -> bool {
         self.emissive.max_element() > 0.0
     }
@@ -405,15 +418,7 @@ impl Scene {
                 material_index.push(k);
                 continue;
             }
-            for t in [
-                &mut m.base_color_tex,
-                &mut m.metallic_roughness_tex,
-                &mut m.normal_tex,
-                &mut m.emissive_tex,
-            ]
-            .into_iter()
-            .flatten()
-            {
+            for t in m.textures_mut() {
                 t.texture += tex0;
             }
             material_index.push(self.materials.len() as u32);
