@@ -61,9 +61,16 @@ impl<'a> Integrator<'a> {
         let mut prev: Option<(f32, Vec3)> = None;
         for bounce in 0.. {
             rays += 1;
-            let Some(hit) = self.accel.intersect(&ray) else {
-                l += beta * self.lights.environment;
-                if bounce == 0 {
+            let hit = self.accel.intersect(&ray);
+            // Analytic lights and environments are not in the accelerator: the ray collects their
+            // (MIS-weighted) radiance up to the scene hit or on leaving the scene.
+            let pdf_prev = prev.map(|(pdf, _)| pdf);
+            let t_hit = hit.as_ref().map_or(f32::INFINITY, |h| h.t);
+            let le = self.lights.emitted(&ray, t_hit, pdf_prev);
+            l += beta * le;
+            let Some(hit) = hit else {
+                l += beta * self.lights.escaped(ray.d, pdf_prev);
+                if bounce == 0 && le == Vec3::ZERO {
                     alpha = 0.0;
                 }
                 break;

@@ -87,6 +87,7 @@ pub fn light_rig(camera_to_world: &Mat4) -> Vec<Light> {
     vec![
         Light::Environment {
             radiance: Vec3::splat(ENVIRONMENT_RADIANCE),
+            map: None,
         },
         Light::Directional {
             direction: -towards_light,

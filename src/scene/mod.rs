@@ -2,6 +2,7 @@
 //! Loaders (`gltf`, `obj`) produce it; accelerators and the integrator only read it.
 
 pub mod defaults;
+pub mod envmap;
 pub mod error;
 pub mod generate;
 pub mod gltf;
@@ -13,6 +14,7 @@ use std::path::{Path, PathBuf};
 use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 
 use crate::geometry::{Aabb, Ray};
+pub use envmap::EnvMap;
 pub use error::LoadError;
 pub use texture::{Texture, Wrap};
 
@@ -178,8 +180,10 @@ impl Material {
     }
 }
 
-/// Lights given by the file (KHR_lights_punctual) or added by the default rig. Emissive triangles are
-/// lights too, but they live in the materials; the integrator collects them.
+/// Lights given by the file (KHR_lights_punctual, scene files) or added by the default rig. Emissive
+/// triangles are lights too, but they live in the materials; the integrator collects them. The
+/// analytic area lights (sphere, disk, rectangle) are not geometry: they emit and are seen, but cast
+/// no shadow on each other or on the scene. Radiance is linear RGB in W/(m^2 sr).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Light {
     /// Intensity in W/sr (glTF candela), linear RGB.
@@ -194,15 +198,94 @@ pub enum Light {
     },
     /// Irradiance (glTF lux) on a surface facing the light; `direction` is where the light travels to.
     Directional { direction: Vec3, irradiance: Vec3 },
-    /// Constant radiance from every direction not blocked by the scene.
-    Environment { radiance: Vec3 },
+    /// A sphere emitting `radiance` outwards from every point of its surface.
+    Sphere {
+        center: Vec3,
+        radius: f32,
+        radiance: Vec3,
+    },
+    /// A disk emitting on the side its unit `normal` faces.
+    Disk {
+        center: Vec3,
+        normal: Vec3,
+        radius: f32,
+        radiance: Vec3,
+    },
+    /// The parallelogram `corner + s * edge_u + t * edge_v` (s, t in [0, 1]), emitting towards
+    /// `edge_u x edge_v`.
+    Rect {
+        corner: Vec3,
+        edge_u: Vec3,
+        edge_v: Vec3,
+        radiance: Vec3,
+    },
+    /// Radiance from every direction not blocked by the scene: `radiance` times the map's value in
+    /// that direction, or constant `radiance` without a map.
+    Environment {
+        radiance: Vec3,
+        map: Option<std::sync::Arc<EnvMap>>,
+    },
 }
 
 impl Light {
-    /// The light moved by an affine transform: positions as points, directions as vectors (renormalised).
+    /// The light moved by an affine transform: positions as points, directions as vectors (renormalised),
+    /// normals by the inverse transpose, radii by the transform's mean scale, environment maps by its
+    /// rotation (a constant environment is unchanged).
     pub fn transformed(&self, m: &Mat4) -> Light {
         let dir = |d: Vec3| m.transform_vector3(d).normalize_or_zero();
+        let scale = m.determinant().abs().cbrt();
         match *self {
+            Light::Sphere {
+                center,
+                radius,
+                radiance,
+            } => Light::Sphere {
+                center: m.transform_point3(center),
+                radius: radius * scale,
+                radiance,
+            },
+            Light::Disk {
+                center,
+                normal,
+                radius,
+                radiance,
+            } => Light::Disk {
+                center: m.transform_point3(center),
+                normal: m
+                    .inverse()
+                    .transpose()
+                    .transform_vector3(normal)
+                    .normalize_or_zero(),
+                radius: radius * scale,
+                radiance,
+            },
+            Light::Rect {
+                corner,
+                edge_u,
+                edge_v,
+                radiance,
+            } => Light::Rect {
+                corner: m.transform_point3(corner),
+                edge_u: m.transform_vector3(edge_u),
+                edge_v: m.transform_vector3(edge_v),
+                radiance,
+            },
+            Light::Environment { radiance, ref map } => Light::Environment {
+                radiance,
+                map: map.as_ref().map(|e| {
+                    // Only the rotation part turns a map; the columns are renormalised so that a
+                    // scale or translation does not distort it.
+                    let r = Mat3::from_mat4(*m);
+                    let r = Mat3::from_cols(
+                        r.x_axis.normalize_or_zero(),
+                        r.y_axis.normalize_or_zero(),
+                        r.z_axis.normalize_or_zero(),
+                    );
+                    let mut e = EnvMap::clone(e);
+                    e.rotation = r * e.rotation;
+                    std::sync::Arc::new(e)
+                }),
+            },
             Light::Point {
                 position,
                 intensity,
@@ -230,8 +313,6 @@ impl Light {
                 direction: dir(direction),
                 irradiance,
             },
-            // Constant in every direction: no transform changes it.
-            Light::Environment { radiance } => Light::Environment { radiance },
         }
     }
 }
