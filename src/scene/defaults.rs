@@ -58,6 +58,18 @@ pub fn light_if_unlit(scene: &mut Scene, camera_to_world: &Mat4) {
     }
 }
 
+/// The light rig with `environment` in place of its constant environment (what `glint render --env`
+/// uses: the map lights the model, the key light still shapes it).
+pub fn light_rig_with_environment(camera_to_world: &Mat4, environment: Light) -> Vec<Light> {
+    let mut rig = light_rig(camera_to_world);
+    for l in &mut rig {
+        if matches!(l, Light::Environment { .. }) {
+            *l = environment.clone();
+        }
+    }
+    rig
+}
+
 /// Centre and radius of the sphere around a box (a unit sphere for an empty box, so that empty files
 /// still render).
 pub fn bounding_sphere(bounds: &Aabb) -> (Vec3, f32) {
