@@ -80,8 +80,9 @@ pub fn bounding_sphere(bounds: &Aabb) -> (Vec3, f32) {
     (bounds.center(), if r > 0.0 { r } else { 1.0 })
 }
 
-/// Whether the scene has light of its own: punctual lights, or an untextured emissive material (a
-/// deliberate light source, as in a Cornell box). Textured emission (glowing details) does not count.
+/// Whether the scene has light of its own: any `Light` (punctual, sphere, disk, rectangle or
+/// environment), or an untextured emissive material (a deliberate light source, as in a Cornell box).
+/// Textured emission (glowing details) does not count.
 pub fn has_own_lights(scene: &Scene) -> bool {
     !scene.lights.is_empty()
         || scene.instances.iter().any(|i| {

@@ -497,3 +497,72 @@ fn blend_hash(ray: &Ray, inst: u32, prim: u32) -> f32 {
     let key = (ray.seed as u64) << 32 ^ (inst as u64) << 24 ^ prim as u64;
     (crate::sample::mix64(key ^ 0x9E37_79B9_7F4A_7C15) >> 40) as f32 / (1u64 << 24) as f32
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::Arc;
+
+    #[test]
+    fn area_and_environment_lights_move_with_a_transform() {
+        let m = Mat4::from_translation(Vec3::new(1.0, 2.0, 3.0))
+            * Mat4::from_rotation_y(0.8)
+            * Mat4::from_scale(Vec3::splat(2.0));
+        let r = Mat3::from_rotation_y(0.8);
+        let radiance = Vec3::ONE;
+        let moved = |l: Light| l.transformed(&m);
+        let Light::Sphere { center, radius, .. } = moved(Light::Sphere {
+            center: Vec3::X,
+            radius: 0.5,
+            radiance,
+        }) else {
+            unreachable!()
+        };
+        assert!(
+            (center - m.transform_point3(Vec3::X)).length() < 1e-5 && (radius - 1.0).abs() < 1e-5
+        );
+        let Light::Disk { normal, radius, .. } = moved(Light::Disk {
+            center: Vec3::ZERO,
+            normal: Vec3::X,
+            radius: 1.0,
+            radiance,
+        }) else {
+            unreachable!()
+        };
+        assert!((normal - r * Vec3::X).length() < 1e-5 && (radius - 2.0).abs() < 1e-5);
+        let Light::Rect { edge_u, edge_v, .. } = moved(Light::Rect {
+            corner: Vec3::ZERO,
+            edge_u: Vec3::X,
+            edge_v: Vec3::Z,
+            radiance,
+        }) else {
+            unreachable!()
+        };
+        assert!((edge_u.cross(edge_v).normalize() - r * -Vec3::Y).length() < 1e-5);
+        // A turned map shows the turned world the same radiance: lookup(R d) after = lookup(d) before.
+        let px = (0..32).map(|i| Vec3::splat(i as f32)).collect();
+        let map = Arc::new(EnvMap::new(8, 4, px).unwrap());
+        let Light::Environment {
+            map: Some(turned), ..
+        } = moved(Light::Environment {
+            radiance,
+            map: Some(map.clone()),
+        })
+        else {
+            unreachable!()
+        };
+        for d in [
+            Vec3::new(0.3, 0.4, -0.8),
+            Vec3::new(-0.7, -0.1, 0.2),
+            Vec3::X,
+        ] {
+            let d = d.normalize();
+            assert_eq!(turned.lookup(r * d), map.lookup(d));
+        }
+        let constant = Light::Environment {
+            radiance,
+            map: None,
+        };
+        assert_eq!(moved(constant.clone()), constant);
+    }
+}

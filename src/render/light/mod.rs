@@ -225,7 +225,7 @@ impl LightSet {
                     v,
                     area,
                 });
-                weights.push(PI * area * luminance(mat.emissive));
+                weights.push(PI * area * mean_emission(scene, mat, mesh, p));
             }
         }
         Self {
@@ -422,12 +422,16 @@ impl LightSet {
                     radiance,
                 } => hit_plane(o, d, corner, normal)
                     .filter(|&(t, _)| {
+                        // Parallelogram coordinates by the dual basis of the two edges.
                         let q = o + d * t - corner;
-                        let (s, r) = (
-                            q.dot(edge_u) / edge_u.length_squared(),
-                            q.dot(edge_v) / edge_v.length_squared(),
+                        let (uu, uv, vv) = (
+                            edge_u.length_squared(),
+                            edge_u.dot(edge_v),
+                            edge_v.length_squared(),
                         );
-                        // Exact for rectangles; a parallelogram would need the dual basis.
+                        let (qu, qv) = (q.dot(edge_u), q.dot(edge_v));
+                        let det = uu * vv - uv * uv;
+                        let (s, r) = ((qu * vv - qv * uv) / det, (qv * uu - qu * uv) / det);
                         (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&r)
                     })
                     .map(|(t, cos)| (t, radiance, t * t / (cos * area))),
@@ -479,6 +483,38 @@ impl LightSet {
             }
         }
     }
+}
+
+/// Barycentric points where a textured triangle's emission is probed: vertices, edge midpoints and
+/// centroid.
+const EMISSION_PROBES: [(f32, f32); 7] = [
+    (0.0, 0.0),
+    (1.0, 0.0),
+    (0.0, 1.0),
+    (0.5, 0.0),
+    (0.0, 0.5),
+    (0.5, 0.5),
+    (1.0 / 3.0, 1.0 / 3.0),
+];
+
+/// Estimated mean emitted luminance over a triangle. With an emission texture (glowing details on a
+/// mostly dark surface) the factor alone would give every triangle of the mesh a share of light
+/// samples; a few texture probes put them where the glow is. A triangle whose probes all miss its
+/// glow is still found by BSDF sampling (MIS then gives that hit weight 1), so this stays unbiased.
+fn mean_emission(
+    scene: &Scene,
+    mat: &crate::scene::Material,
+    mesh: &crate::scene::Mesh,
+    prim: u32,
+) -> f32 {
+    if mat.emissive_tex.is_none() {
+        return luminance(mat.emissive);
+    }
+    let sum: f32 = EMISSION_PROBES
+        .iter()
+        .map(|&(b1, b2)| luminance(emission(scene, mat, mesh.uv_at(prim, b1, b2))))
+        .sum();
+    sum / EMISSION_PROBES.len() as f32
 }
 
 /// The importance-sampling distribution of an environment map (luminance of `scale` times the pixel,
