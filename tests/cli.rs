@@ -199,3 +199,58 @@ fn scene_file_settings_apply_unless_a_flag_is_given() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(image::image_dimensions(&out).unwrap(), (30, 18));
 }
+
+#[test]
+fn env_maps_light_renders_and_bad_ones_are_named() {
+    let dir = tempfile::tempdir().unwrap();
+    // A 4 x 2 lat-long map: bright sky row above a dark ground row.
+    let mut sky = glint::film::Image::new(4, 2);
+    for (i, p) in sky.pixels.iter_mut().enumerate() {
+        let v = if i < 4 { 2.0 } else { 0.1 };
+        *p = glam::Vec4::new(v, v, v, 1.0);
+    }
+    let map = dir.path().join("sky.exr");
+    glint::film::write(&sky, &map, 0.0).unwrap();
+    let out = dir.path().join("lit.exr");
+    let args = |env: &str| {
+        vec![
+            "render".to_string(),
+            demo(),
+            "-o".into(),
+            out.to_str().unwrap().into(),
+            "--width".into(),
+            "16".into(),
+            "--height".into(),
+            "12".into(),
+            "--spp".into(),
+            "2".into(),
+            "--env".into(),
+            env.into(),
+            "--env-strength".into(),
+            "0.5".into(),
+            "--env-rotation".into(),
+            "-30".into(),
+        ]
+    };
+    let run = |a: Vec<String>| glint(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    let o = run(args(map.to_str().unwrap()));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let img = glint::film::read_exr(&out).unwrap();
+    assert!(!img.has_non_finite());
+    // Background pixels see the map: the top row the sky or the ground, times the strength.
+    let top = img.get(0, 0);
+    assert!(top.x > 0.04 && top.x < 1.01, "top-left pixel {top}");
+
+    let bad = dir.path().join("bad.hdr");
+    std::fs::write(&bad, b"#?RADIANCE\nnot really").unwrap();
+    for path in [
+        bad,
+        dir.path().join("absent.exr"),
+        dir.path().join("sky.png"),
+    ] {
+        let o = run(args(path.to_str().unwrap()));
+        assert!(!o.status.success());
+        let name = path.file_name().unwrap().to_str().unwrap();
+        assert!(stderr(&o).contains(name), "{}", stderr(&o));
+    }
+}

@@ -17,7 +17,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use crate::accel::{self, Backend};
 use crate::film;
 use crate::render::{self, RenderSettings};
-use crate::scene::{defaults, Camera, Projection, Scene};
+use crate::scene::{defaults, Camera, EnvMap, Light, Projection, Scene};
 
 /// Largest accepted image edge, in pixels.
 const MAX_EDGE: usize = 32_768;
@@ -149,6 +149,22 @@ pub struct RenderArgs {
     /// The default light rig (environment + key light).
     #[arg(long, value_enum, default_value_t = DefaultLights::Auto)]
     pub default_lights: DefaultLights,
+    /// Light the model with an environment map: a lat-long (equirectangular) .exr or .hdr image of
+    /// linear radiance, +Y up, its centre column facing +X (the glTF Sample Viewer's orientation). It
+    /// replaces the default rig's constant environment, or the file's environment.
+    #[arg(long, value_name = "FILE.exr|.hdr")]
+    pub env: Option<PathBuf>,
+    /// Multiplier on the --env map's radiance.
+    #[arg(long, default_value_t = 1.0, requires = "env")]
+    pub env_strength: f32,
+    /// Turn the --env map about +Y by this many degrees (counter-clockwise seen from above).
+    #[arg(
+        long,
+        default_value_t = 0.0,
+        allow_hyphen_values = true,
+        requires = "env"
+    )]
+    pub env_rotation: f32,
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
     /// Worker threads (default: all cores).
@@ -410,6 +426,24 @@ fn choose_camera(scene: &Scene, args: &RenderArgs) -> Result<Camera> {
     Ok(camera)
 }
 
+/// The environment light of `--env`, `--env-strength` and `--env-rotation`.
+fn env_light(path: &std::path::Path, args: &RenderArgs) -> Result<Light> {
+    if !(args.env_strength.is_finite() && args.env_strength >= 0.0) {
+        bail!(
+            "--env-strength must be a finite number >= 0, not {}",
+            args.env_strength
+        );
+    }
+    if !args.env_rotation.is_finite() {
+        bail!("--env-rotation must be finite");
+    }
+    let map = EnvMap::load(path)?.rotated_y(args.env_rotation.to_radians());
+    Ok(Light::Environment {
+        radiance: Vec3::splat(args.env_strength),
+        map: Some(Arc::new(map)),
+    })
+}
+
 fn render_command(mut args: RenderArgs) -> Result<()> {
     // Fail on a bad output name before spending time on the render.
     film::Format::from_path(&args.output)?;
@@ -429,12 +463,29 @@ fn render_command(mut args: RenderArgs) -> Result<()> {
     }
 
     let t0 = Instant::now();
+    let environment = args
+        .env
+        .as_deref()
+        .map(|path| env_light(path, &args))
+        .transpose()?;
     let mut scene = load(&args.input)?;
     let load_s = t0.elapsed().as_secs_f64();
     args.apply_file_settings(&scene.settings)?;
     args.image.validate()?;
     let camera = choose_camera(&scene, &args)?;
-    if args.default_lights.wanted(&scene) {
+    let rig = args.default_lights.wanted(&scene);
+    if let Some(env) = environment {
+        scene
+            .lights
+            .retain(|l| !matches!(l, Light::Environment { .. }));
+        if rig {
+            scene
+                .lights
+                .extend(defaults::light_rig_with_environment(&camera.to_world, env));
+        } else {
+            scene.lights.push(env);
+        }
+    } else if rig {
         scene.lights.extend(defaults::light_rig(&camera.to_world));
     }
     let scene = Arc::new(scene);

@@ -123,9 +123,15 @@ impl<'a> Integrator<'a> {
                 let dist = hit.map_or(f32::INFINITY, |h| h.t * ray.d.length());
                 beta *= (-medium * dist).exp();
             }
+            // Analytic lights and environments are not in the accelerator: the ray collects their
+            // (MIS-weighted) radiance up to the scene hit or on leaving the scene.
+            let pdf_prev = prev.map(|(pdf, _)| pdf);
+            let t_hit = hit.as_ref().map_or(f32::INFINITY, |h| h.t);
+            let le = self.lights.emitted(&ray, t_hit, pdf_prev);
+            l += beta * le;
             let Some(hit) = hit else {
-                l += beta * self.lights.environment;
-                if bounce == 0 {
+                l += beta * self.lights.escaped(ray.d, pdf_prev);
+                if bounce == 0 && le == Vec3::ZERO {
                     alpha = 0.0;
                 }
                 break;

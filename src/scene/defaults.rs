@@ -58,6 +58,18 @@ pub fn light_if_unlit(scene: &mut Scene, camera_to_world: &Mat4) {
     }
 }
 
+/// The light rig with `environment` in place of its constant environment (what `glint render --env`
+/// uses: the map lights the model, the key light still shapes it).
+pub fn light_rig_with_environment(camera_to_world: &Mat4, environment: Light) -> Vec<Light> {
+    let mut rig = light_rig(camera_to_world);
+    for l in &mut rig {
+        if matches!(l, Light::Environment { .. }) {
+            *l = environment.clone();
+        }
+    }
+    rig
+}
+
 /// Centre and radius of the sphere around a box (a unit sphere for an empty box, so that empty files
 /// still render).
 pub fn bounding_sphere(bounds: &Aabb) -> (Vec3, f32) {
@@ -68,8 +80,9 @@ pub fn bounding_sphere(bounds: &Aabb) -> (Vec3, f32) {
     (bounds.center(), if r > 0.0 { r } else { 1.0 })
 }
 
-/// Whether the scene has light of its own: punctual lights, or an untextured emissive material (a
-/// deliberate light source, as in a Cornell box). Textured emission (glowing details) does not count.
+/// Whether the scene has light of its own: any `Light` (punctual, sphere, disk, rectangle or
+/// environment), or an untextured emissive material (a deliberate light source, as in a Cornell box).
+/// Textured emission (glowing details) does not count.
 pub fn has_own_lights(scene: &Scene) -> bool {
     !scene.lights.is_empty()
         || scene.instances.iter().any(|i| {
@@ -87,6 +100,7 @@ pub fn light_rig(camera_to_world: &Mat4) -> Vec<Light> {
     vec![
         Light::Environment {
             radiance: Vec3::splat(ENVIRONMENT_RADIANCE),
+            map: None,
         },
         Light::Directional {
             direction: -towards_light,

@@ -53,7 +53,7 @@ struct Desc {
     #[serde(default)]
     material: Vec<Spanned<MaterialDesc>>,
     #[serde(default)]
-    light: Vec<LightDesc>,
+    light: Vec<Spanned<LightDesc>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -185,7 +185,51 @@ enum LightDesc {
     Point(PointDesc),
     Spot(SpotDesc),
     Directional(DirectionalDesc),
+    Sphere(SphereDesc),
+    Disk(DiskDesc),
+    Rect(RectDesc),
     Environment(EnvironmentDesc),
+}
+
+/// An emitting sphere: `radiance` (W/sr/m^2) is `color * strength`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SphereDesc {
+    center: [f32; 3],
+    radius: f32,
+    #[serde(default = "white")]
+    color: [f32; 3],
+    strength: f32,
+}
+
+/// A one-sided disk facing `look_at` (or along `normal`).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct DiskDesc {
+    center: [f32; 3],
+    radius: f32,
+    normal: Option<[f32; 3]>,
+    look_at: Option<[f32; 3]>,
+    #[serde(default = "white")]
+    color: [f32; 3],
+    strength: f32,
+}
+
+/// A one-sided rectangle: `center` and `size = [w, h]` facing `look_at` (or along `normal`), or the
+/// parallelogram `corner + s edge_u + t edge_v` emitting towards `edge_u x edge_v`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RectDesc {
+    center: Option<[f32; 3]>,
+    size: Option<[f32; 2]>,
+    normal: Option<[f32; 3]>,
+    look_at: Option<[f32; 3]>,
+    corner: Option<[f32; 3]>,
+    edge_u: Option<[f32; 3]>,
+    edge_v: Option<[f32; 3]>,
+    #[serde(default = "white")]
+    color: [f32; 3],
+    strength: f32,
 }
 
 #[derive(Debug, Deserialize)]
@@ -231,6 +275,11 @@ struct EnvironmentDesc {
     color: [f32; 3],
     #[serde(default = "one")]
     strength: f32,
+    /// A lat-long (equirectangular) .exr or .hdr map, relative to the scene file.
+    map: Option<PathBuf>,
+    /// Turns the map about +Y, degrees.
+    #[serde(default)]
+    rotate_y: f32,
 }
 
 fn white() -> [f32; 3] {
@@ -327,7 +376,11 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
     }
 
     for l in &desc.light {
-        scene.lights.push(l.to_light());
+        let light = l
+            .get_ref()
+            .to_light(dir)
+            .map_err(|e| at(l.span(), format!("light: {e}")))?;
+        scene.lights.push(light);
     }
     if let Some(c) = &desc.camera {
         let (eye, target) = (Vec3::from(c.position), Vec3::from(c.look_at));
@@ -353,28 +406,119 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
 }
 
 impl LightDesc {
-    fn to_light(&self) -> super::Light {
+    fn to_light(&self, dir: &Path) -> Result<super::Light, String> {
         use super::Light;
-        match self {
+        let rgb = |c: [f32; 3], k: f32| -> Result<Vec3, String> {
+            let v = Vec3::from(c) * k;
+            if v.is_finite() && v.min_element() >= 0.0 {
+                Ok(v)
+            } else {
+                Err("color and strength must be finite and not negative".into())
+            }
+        };
+        let positive = |name: &str, v: f32| {
+            if v > 0.0 && v.is_finite() {
+                Ok(v)
+            } else {
+                Err(format!("{name} must be positive"))
+            }
+        };
+        // The unit normal of an area light: given, or towards `look_at`.
+        let facing = |center: Vec3, normal: Option<[f32; 3]>, look_at: Option<[f32; 3]>| {
+            let n = match (normal, look_at) {
+                (Some(n), None) => Vec3::from(n),
+                (None, Some(t)) => Vec3::from(t) - center,
+                _ => return Err("give exactly one of normal and look_at".to_string()),
+            };
+            let n = n.normalize_or_zero();
+            if n == Vec3::ZERO || !n.is_finite() {
+                return Err("the facing direction is zero".into());
+            }
+            Ok(n)
+        };
+        Ok(match self {
             LightDesc::Point(p) => Light::Point {
                 position: p.position.into(),
-                intensity: Vec3::from(p.color) * p.intensity,
+                intensity: rgb(p.color, p.intensity)?,
             },
             LightDesc::Spot(s) => Light::Spot {
                 position: s.position.into(),
-                direction: (Vec3::from(s.look_at) - Vec3::from(s.position)).normalize_or_zero(),
-                intensity: Vec3::from(s.color) * s.intensity,
+                direction: facing(s.position.into(), None, Some(s.look_at))?,
+                intensity: rgb(s.color, s.intensity)?,
                 cos_inner: s.inner_angle.to_radians().cos(),
                 cos_outer: s.outer_angle.to_radians().cos(),
             },
             LightDesc::Directional(d) => Light::Directional {
-                direction: Vec3::from(d.direction).normalize_or_zero(),
-                irradiance: Vec3::from(d.color) * d.irradiance,
+                direction: facing(Vec3::ZERO, Some(d.direction), None)?,
+                irradiance: rgb(d.color, d.irradiance)?,
             },
-            LightDesc::Environment(e) => Light::Environment {
-                radiance: Vec3::from(e.color) * e.strength,
+            LightDesc::Sphere(s) => Light::Sphere {
+                center: s.center.into(),
+                radius: positive("radius", s.radius)?,
+                radiance: rgb(s.color, s.strength)?,
             },
-        }
+            LightDesc::Disk(d) => Light::Disk {
+                center: d.center.into(),
+                normal: facing(d.center.into(), d.normal, d.look_at)?,
+                radius: positive("radius", d.radius)?,
+                radiance: rgb(d.color, d.strength)?,
+            },
+            LightDesc::Rect(r) => {
+                let (corner, edge_u, edge_v) =
+                    match (r.center, r.size, r.corner, r.edge_u, r.edge_v) {
+                        (Some(c), Some([w, h]), None, None, None) => {
+                            let c = Vec3::from(c);
+                            let n = facing(c, r.normal, r.look_at)?;
+                            positive("size", w.min(h))?;
+                            // Width along the horizontal most across the normal, height up.
+                            let frame = crate::render::bsdf::Frame::from_normal(n);
+                            let across = if n.cross(Vec3::Y).length() > 1e-3 {
+                                Vec3::Y.cross(n).normalize()
+                            } else {
+                                frame.t
+                            };
+                            let up = n.cross(across);
+                            let (eu, ev) = (across * w, up * h);
+                            (c - 0.5 * (eu + ev), eu, ev)
+                        }
+                        (None, None, Some(c), Some(u), Some(v)) => {
+                            if r.normal.is_some() || r.look_at.is_some() {
+                                return Err("a corner rectangle faces edge_u x edge_v".into());
+                            }
+                            (Vec3::from(c), Vec3::from(u), Vec3::from(v))
+                        }
+                        _ => {
+                            return Err(
+                                "a rect light takes center and size, or corner, edge_u and edge_v"
+                                    .into(),
+                            )
+                        }
+                    };
+                if edge_u.cross(edge_v).length() <= 0.0 {
+                    return Err("the rectangle has no area".into());
+                }
+                Light::Rect {
+                    corner,
+                    edge_u,
+                    edge_v,
+                    radiance: rgb(r.color, r.strength)?,
+                }
+            }
+            LightDesc::Environment(e) => {
+                let map = match &e.map {
+                    Some(p) => Some(std::sync::Arc::new(
+                        super::EnvMap::load(&dir.join(p))
+                            .map_err(|e| e.to_string())?
+                            .rotated_y(e.rotate_y.to_radians()),
+                    )),
+                    None => None,
+                };
+                Light::Environment {
+                    radiance: rgb(e.color, e.strength)?,
+                    map,
+                }
+            }
+        })
     }
 }
 
@@ -476,5 +620,67 @@ fov = 30
         assert_ne!(s.material_of(0).name, "gold");
         assert_eq!(s.lights.len(), 1);
         assert_eq!(s.cameras[0].name, "scene file");
+    }
+
+    #[test]
+    fn area_lights_face_where_they_are_told() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = write(
+            dir.path(),
+            "s.toml",
+            r#"
+[[light]]
+type = "rect"
+center = [0, 2, 0]
+size = [2, 1]
+look_at = [0, 0, 0]
+strength = 3
+
+[[light]]
+type = "disk"
+center = [1, 1, 1]
+radius = 0.5
+normal = [0, 0, 1]
+strength = 1
+
+[[light]]
+type = "sphere"
+center = [0, 1, 0]
+radius = 0.1
+color = [1, 0.5, 0.25]
+strength = 4
+"#,
+        );
+        let s = load(&p).unwrap();
+        match s.lights[0] {
+            super::super::Light::Rect {
+                corner,
+                edge_u,
+                edge_v,
+                radiance,
+            } => {
+                let n = edge_u.cross(edge_v).normalize();
+                assert!((n - Vec3::NEG_Y).length() < 1e-6, "{n}");
+                assert!(
+                    (corner + 0.5 * (edge_u + edge_v) - Vec3::new(0.0, 2.0, 0.0)).length() < 1e-6
+                );
+                assert!((edge_u.length() * edge_v.length() - 2.0).abs() < 1e-5);
+                assert_eq!(radiance, Vec3::splat(3.0));
+            }
+            ref l => panic!("{l:?}"),
+        }
+        assert!(
+            matches!(s.lights[1], super::super::Light::Disk { normal, .. } if normal == Vec3::Z)
+        );
+        assert!(
+            matches!(s.lights[2], super::super::Light::Sphere { radiance, .. } if radiance == Vec3::new(4.0, 2.0, 1.0))
+        );
+        let bad = write(
+            dir.path(),
+            "b.toml",
+            "[[light]]\ntype = \"disk\"\ncenter = [0, 0, 0]\nradius = 1\nstrength = 1\n",
+        );
+        let e = load(&bad).unwrap_err().to_string();
+        assert!(e.contains("line 1") && e.contains("normal"), "{e}");
     }
 }

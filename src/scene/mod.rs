@@ -3,6 +3,7 @@
 
 pub mod defaults;
 pub mod desc;
+pub mod envmap;
 pub mod error;
 pub mod generate;
 pub mod gltf;
@@ -15,6 +16,7 @@ use std::path::{Path, PathBuf};
 use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 
 use crate::geometry::{Aabb, Ray};
+pub use envmap::EnvMap;
 pub use error::LoadError;
 pub use texture::{Texture, Wrap};
 
@@ -228,8 +230,10 @@ impl Material {
     }
 }
 
-/// Lights given by the file (KHR_lights_punctual) or added by the default rig. Emissive triangles are
-/// lights too, but they live in the materials; the integrator collects them.
+/// Lights given by the file (KHR_lights_punctual, scene files) or added by the default rig. Emissive
+/// triangles are lights too, but they live in the materials; the integrator collects them. The
+/// analytic area lights (sphere, disk, rectangle) are not geometry: they emit and are seen, but cast
+/// no shadow on each other or on the scene. Radiance is linear RGB in W/(m^2 sr).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Light {
     /// Intensity in W/sr (glTF candela), linear RGB.
@@ -244,15 +248,94 @@ pub enum Light {
     },
     /// Irradiance (glTF lux) on a surface facing the light; `direction` is where the light travels to.
     Directional { direction: Vec3, irradiance: Vec3 },
-    /// Constant radiance from every direction not blocked by the scene.
-    Environment { radiance: Vec3 },
+    /// A sphere emitting `radiance` outwards from every point of its surface.
+    Sphere {
+        center: Vec3,
+        radius: f32,
+        radiance: Vec3,
+    },
+    /// A disk emitting on the side its unit `normal` faces.
+    Disk {
+        center: Vec3,
+        normal: Vec3,
+        radius: f32,
+        radiance: Vec3,
+    },
+    /// The parallelogram `corner + s * edge_u + t * edge_v` (s, t in [0, 1]), emitting towards
+    /// `edge_u x edge_v`.
+    Rect {
+        corner: Vec3,
+        edge_u: Vec3,
+        edge_v: Vec3,
+        radiance: Vec3,
+    },
+    /// Radiance from every direction not blocked by the scene: `radiance` times the map's value in
+    /// that direction, or constant `radiance` without a map.
+    Environment {
+        radiance: Vec3,
+        map: Option<std::sync::Arc<EnvMap>>,
+    },
 }
 
 impl Light {
-    /// The light moved by an affine transform: positions as points, directions as vectors (renormalised).
+    /// The light moved by an affine transform: positions as points, directions as vectors (renormalised),
+    /// normals by the inverse transpose, radii by the transform's mean scale, environment maps by its
+    /// rotation (a constant environment is unchanged).
     pub fn transformed(&self, m: &Mat4) -> Light {
         let dir = |d: Vec3| m.transform_vector3(d).normalize_or_zero();
+        let scale = m.determinant().abs().cbrt();
         match *self {
+            Light::Sphere {
+                center,
+                radius,
+                radiance,
+            } => Light::Sphere {
+                center: m.transform_point3(center),
+                radius: radius * scale,
+                radiance,
+            },
+            Light::Disk {
+                center,
+                normal,
+                radius,
+                radiance,
+            } => Light::Disk {
+                center: m.transform_point3(center),
+                normal: m
+                    .inverse()
+                    .transpose()
+                    .transform_vector3(normal)
+                    .normalize_or_zero(),
+                radius: radius * scale,
+                radiance,
+            },
+            Light::Rect {
+                corner,
+                edge_u,
+                edge_v,
+                radiance,
+            } => Light::Rect {
+                corner: m.transform_point3(corner),
+                edge_u: m.transform_vector3(edge_u),
+                edge_v: m.transform_vector3(edge_v),
+                radiance,
+            },
+            Light::Environment { radiance, ref map } => Light::Environment {
+                radiance,
+                map: map.as_ref().map(|e| {
+                    // Only the rotation part turns a map; the columns are renormalised so that a
+                    // scale or translation does not distort it.
+                    let r = Mat3::from_mat4(*m);
+                    let r = Mat3::from_cols(
+                        r.x_axis.normalize_or_zero(),
+                        r.y_axis.normalize_or_zero(),
+                        r.z_axis.normalize_or_zero(),
+                    );
+                    let mut e = EnvMap::clone(e);
+                    e.rotation = r * e.rotation;
+                    std::sync::Arc::new(e)
+                }),
+            },
             Light::Point {
                 position,
                 intensity,
@@ -280,8 +363,6 @@ impl Light {
                 direction: dir(direction),
                 irradiance,
             },
-            // Constant in every direction: no transform changes it.
-            Light::Environment { radiance } => Light::Environment { radiance },
         }
     }
 }
@@ -514,4 +595,73 @@ impl Scene {
 fn blend_hash(ray: &Ray, inst: u32, prim: u32) -> f32 {
     let key = (ray.seed as u64) << 32 ^ (inst as u64) << 24 ^ prim as u64;
     (crate::sample::mix64(key ^ 0x9E37_79B9_7F4A_7C15) >> 40) as f32 / (1u64 << 24) as f32
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::Arc;
+
+    #[test]
+    fn area_and_environment_lights_move_with_a_transform() {
+        let m = Mat4::from_translation(Vec3::new(1.0, 2.0, 3.0))
+            * Mat4::from_rotation_y(0.8)
+            * Mat4::from_scale(Vec3::splat(2.0));
+        let r = Mat3::from_rotation_y(0.8);
+        let radiance = Vec3::ONE;
+        let moved = |l: Light| l.transformed(&m);
+        let Light::Sphere { center, radius, .. } = moved(Light::Sphere {
+            center: Vec3::X,
+            radius: 0.5,
+            radiance,
+        }) else {
+            unreachable!()
+        };
+        assert!(
+            (center - m.transform_point3(Vec3::X)).length() < 1e-5 && (radius - 1.0).abs() < 1e-5
+        );
+        let Light::Disk { normal, radius, .. } = moved(Light::Disk {
+            center: Vec3::ZERO,
+            normal: Vec3::X,
+            radius: 1.0,
+            radiance,
+        }) else {
+            unreachable!()
+        };
+        assert!((normal - r * Vec3::X).length() < 1e-5 && (radius - 2.0).abs() < 1e-5);
+        let Light::Rect { edge_u, edge_v, .. } = moved(Light::Rect {
+            corner: Vec3::ZERO,
+            edge_u: Vec3::X,
+            edge_v: Vec3::Z,
+            radiance,
+        }) else {
+            unreachable!()
+        };
+        assert!((edge_u.cross(edge_v).normalize() - r * -Vec3::Y).length() < 1e-5);
+        // A turned map shows the turned world the same radiance: lookup(R d) after = lookup(d) before.
+        let px = (0..32).map(|i| Vec3::splat(i as f32)).collect();
+        let map = Arc::new(EnvMap::new(8, 4, px).unwrap());
+        let Light::Environment {
+            map: Some(turned), ..
+        } = moved(Light::Environment {
+            radiance,
+            map: Some(map.clone()),
+        })
+        else {
+            unreachable!()
+        };
+        for d in [
+            Vec3::new(0.3, 0.4, -0.8),
+            Vec3::new(-0.7, -0.1, 0.2),
+            Vec3::X,
+        ] {
+            let d = d.normalize();
+            assert_eq!(turned.lookup(r * d), map.lookup(d));
+        }
+        let constant = Light::Environment {
+            radiance,
+            map: None,
+        };
+        assert_eq!(moved(constant.clone()), constant);
+    }
 }

@@ -1,0 +1,212 @@
+//! Environment maps: a latitude-longitude (equirectangular) image of linear RGB radiance around the
+//! scene, loaded from OpenEXR or Radiance HDR, and looked up by world direction.
+//!
+//! Orientation (+Y up, as glTF, and as the Khronos glTF Sample Viewer and three.js read panoramas):
+//! the top row is straight up (+Y), the bottom row straight down; along a row the azimuth
+//! `phi = atan2(d.z, d.x)` runs from -pi at the left edge through +X at the centre column to +pi at the
+//! right edge (so a quarter of the width right of the centre is +Z, a quarter left of it is -Z).
+//! `rotation` turns the map about +Y (or any rotation, e.g. from a turntable) before that lookup.
+
+use std::f32::consts::PI;
+use std::path::Path;
+use std::sync::Arc;
+
+use glam::{Mat3, Vec2, Vec3};
+
+use super::LoadError;
+
+/// A lat-long radiance map. Cloning is cheap: the pixels are shared.
+#[derive(Clone, Debug)]
+pub struct EnvMap {
+    pub width: usize,
+    pub height: usize,
+    /// Row-major linear RGB, top row first.
+    pub pixels: Arc<Vec<Vec3>>,
+    /// Map space to world space (a rotation).
+    pub rotation: Mat3,
+}
+
+impl PartialEq for EnvMap {
+    fn eq(&self, other: &Self) -> bool {
+        self.width == other.width
+            && self.height == other.height
+            && self.rotation == other.rotation
+            && (Arc::ptr_eq(&self.pixels, &other.pixels) || self.pixels == other.pixels)
+    }
+}
+
+impl EnvMap {
+    /// A map from pixels (row-major, top row first); `None` when the size and the pixel count differ
+    /// or the map is empty.
+    pub fn new(width: usize, height: usize, pixels: Vec<Vec3>) -> Option<Self> {
+        (width > 0 && height > 0 && pixels.len() == width * height).then(|| Self {
+            width,
+            height,
+            pixels: Arc::new(pixels),
+            rotation: Mat3::IDENTITY,
+        })
+    }
+
+    /// A map of one colour (for tests: it must render like a constant environment).
+    pub fn constant(width: usize, height: usize, value: Vec3) -> Self {
+        Self::new(width, height, vec![value; width * height]).expect("non-empty")
+    }
+
+    /// Loads a .exr or .hdr file; errors name the file and the problem. Non-finite or negative
+    /// values are clamped to zero, since one of them would poison every pixel that sees it.
+    pub fn load(path: &Path) -> Result<Self, LoadError> {
+        let err = |msg: String| LoadError::new(path, msg);
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        let (w, h, mut px) = match ext.as_deref() {
+            Some("exr") => read_exr(path).map_err(err)?,
+            Some("hdr") => read_hdr(path).map_err(err)?,
+            _ => {
+                return Err(err(
+                    "environment maps must be .exr or .hdr (lat-long, linear RGB)".into(),
+                ))
+            }
+        };
+        for p in &mut px {
+            *p = Vec3::from_array(
+                p.to_array()
+                    .map(|c| if c.is_finite() { c.max(0.0) } else { 0.0 }),
+            );
+        }
+        Self::new(w, h, px).ok_or_else(|| err("the image is empty".into()))
+    }
+
+    /// The map turned by `angle` radians about +Y (counter-clockwise seen from above).
+    pub fn rotated_y(mut self, angle: f32) -> Self {
+        self.rotation = Mat3::from_rotation_y(angle) * self.rotation;
+        self
+    }
+
+    /// Lat-long coordinates in [0,1)^2 of a world direction (u across, v down from the top).
+    pub fn direction_to_uv(&self, d: Vec3) -> Vec2 {
+        let m = self.rotation.transpose() * d;
+        let theta = m.y.clamp(-1.0, 1.0).acos();
+        let phi = m.z.atan2(m.x);
+        Vec2::new(0.5 + phi / (2.0 * PI), theta / PI)
+    }
+
+    /// The world direction at lat-long coordinates `uv`, and `sin(theta)` there (the solid-angle
+    /// Jacobian's factor).
+    pub fn uv_to_direction(&self, uv: Vec2) -> (Vec3, f32) {
+        let theta = uv.y * PI;
+        let phi = (uv.x - 0.5) * 2.0 * PI;
+        let (st, ct) = theta.sin_cos();
+        let (sp, cp) = phi.sin_cos();
+        (self.rotation * Vec3::new(st * cp, ct, st * sp), st)
+    }
+
+    /// The pixel (column, row) holding `uv`.
+    pub fn pixel_of(&self, uv: Vec2) -> (usize, usize) {
+        let x = ((uv.x * self.width as f32) as isize).rem_euclid(self.width as isize) as usize;
+        let y = ((uv.y * self.height as f32) as usize).min(self.height - 1);
+        (x, y)
+    }
+
+    /// Radiance arriving from world direction `d` (nearest pixel: piecewise constant, which is what
+    /// the importance sampling's pdf assumes).
+    pub fn lookup(&self, d: Vec3) -> Vec3 {
+        let (x, y) = self.pixel_of(self.direction_to_uv(d));
+        self.pixels[y * self.width + x]
+    }
+}
+
+fn read_exr(path: &Path) -> Result<(usize, usize, Vec<Vec3>), String> {
+    use exr::prelude::{read_first_rgba_layer_from_file, Vec2};
+    let img = read_first_rgba_layer_from_file(
+        path,
+        |res, _| {
+            let (w, h) = (res.width(), res.height());
+            (w, vec![Vec3::ZERO; w * h])
+        },
+        |(w, px), Vec2(x, y), (r, g, b, _a): (f32, f32, f32, f32)| {
+            px[y * *w + x] = Vec3::new(r, g, b)
+        },
+    )
+    .map_err(|e| format!("reading OpenEXR: {e}"))?;
+    let size = img.layer_data.size;
+    Ok((
+        size.width(),
+        size.height(),
+        img.layer_data.channel_data.pixels.1,
+    ))
+}
+
+fn read_hdr(path: &Path) -> Result<(usize, usize, Vec<Vec3>), String> {
+    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+    let decoder = image::codecs::hdr::HdrDecoder::new(std::io::BufReader::new(file))
+        .map_err(|e| format!("reading Radiance HDR: {e}"))?;
+    let img = image::DynamicImage::from_decoder(decoder)
+        .map_err(|e| format!("reading Radiance HDR: {e}"))?
+        .into_rgb32f();
+    let (w, h) = (img.width() as usize, img.height() as usize);
+    let px = img
+        .pixels()
+        .map(|p| Vec3::new(p.0[0], p.0[1], p.0[2]))
+        .collect();
+    Ok((w, h, px))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn directions_and_coordinates_round_trip_with_the_documented_orientation() {
+        let m = EnvMap::constant(8, 4, Vec3::ONE);
+        let uv = |d: Vec3| m.direction_to_uv(d.normalize());
+        assert!((uv(Vec3::Y).y).abs() < 1e-6);
+        assert!((uv(-Vec3::Y).y - 1.0).abs() < 1e-6);
+        assert!((uv(Vec3::X) - Vec2::new(0.5, 0.5)).length() < 1e-6);
+        assert!((uv(Vec3::Z) - Vec2::new(0.75, 0.5)).length() < 1e-6);
+        assert!((uv(-Vec3::Z) - Vec2::new(0.25, 0.5)).length() < 1e-6);
+        let r = m.clone().rotated_y(0.7);
+        for d in [Vec3::new(0.3, 0.5, -0.8), Vec3::new(-0.9, -0.2, 0.1)] {
+            let d = d.normalize();
+            for map in [&m, &r] {
+                let (back, st) = map.uv_to_direction(map.direction_to_uv(d));
+                assert!((back - d).length() < 1e-5, "{back} vs {d}");
+                assert!((st - (1.0 - d.y * d.y).sqrt()).abs() < 1e-5);
+            }
+        }
+        // Rotating the map by +90 degrees about Y carries what was at +X to -Z.
+        let q = m.clone().rotated_y(std::f32::consts::FRAC_PI_2);
+        assert!((q.direction_to_uv(-Vec3::Z) - Vec2::new(0.5, 0.5)).length() < 1e-5);
+    }
+
+    #[test]
+    fn load_errors_name_the_file() {
+        let dir = tempfile::tempdir().unwrap();
+        for name in ["sky.exr", "sky.hdr", "sky.png"] {
+            let p = dir.path().join(name);
+            std::fs::write(&p, b"not an image").unwrap();
+            let e = EnvMap::load(&p).unwrap_err().to_string();
+            assert!(e.contains(name), "{e}");
+        }
+        let e = EnvMap::load(&dir.path().join("missing.exr"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("missing.exr"), "{e}");
+    }
+
+    #[test]
+    fn exr_maps_load_with_rows_top_first() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("grad.exr");
+        let mut img = crate::film::Image::new(4, 2);
+        for (i, px) in img.pixels.iter_mut().enumerate() {
+            *px = glam::Vec4::new(i as f32, 0.5, 2.0, 1.0);
+        }
+        crate::film::write(&img, &p, 0.0).unwrap();
+        let m = EnvMap::load(&p).unwrap();
+        assert_eq!((m.width, m.height), (4, 2));
+        assert_eq!(m.lookup(Vec3::new(0.01, 1.0, 0.0).normalize()).x, 2.0);
+        assert_eq!(m.lookup(-Vec3::Y).y, 0.5);
+    }
+}
