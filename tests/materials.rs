@@ -42,6 +42,7 @@ fn furnace(material: Material) -> Arc<Scene> {
         materials: vec![material],
         lights: vec![Light::Environment {
             radiance: Vec3::ONE,
+            map: None,
         }],
         ..Default::default()
     })
@@ -280,6 +281,7 @@ fn absorbing_slab_follows_beer_lambert() {
         vec![medium],
         vec![Light::Environment {
             radiance: Vec3::ONE,
+            map: None,
         }],
     );
     let camera = Camera::look_at(Vec3::new(0.0, 0.0, -5.0), Vec3::ZERO, Vec3::Y, 1e-3);
