@@ -134,15 +134,13 @@ pub fn generate_rays(scene: &Scene, accel: &dyn Accel, width: usize, height: usi
         .enumerate()
         .filter_map(|(i, r)| {
             let h = accel.intersect(r)?;
-            let [a, b, c] = scene.world_triangle(h.inst, h.prim);
-            let mut n = (b - a).cross(c - a).normalize_or_zero();
+            let (p, mut n) = scene.hit_geometry(&h, r);
             if n == Vec3::ZERO {
                 return None;
             }
             if n.dot(r.d) > 0.0 {
                 n = -n;
             }
-            let p = a * (1.0 - h.u - h.v) + b * h.u + c * h.v;
             let o = offset_ray_origin(p, n);
             let u = |k: u64| unit(mix64(i as u64 * 4 + k));
             let shadow = lights
