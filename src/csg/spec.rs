@@ -348,7 +348,7 @@ mod tests {
         .unwrap();
         let node = spec.resolve(&materials, 0).unwrap();
         let obj = crate::csg::CsgObject::new(node, Mat4::IDENTITY).unwrap();
-        assert_eq!(obj.materials().count(), 9);
+        assert_eq!(obj.materials().count(), 8);
         // The cylinder from (0,0,0) to (0,0,3): its axis is z, so it spans z in [0, 3].
         let Node::Operation { children, .. } = &obj.root else {
             panic!()
