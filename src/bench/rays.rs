@@ -78,8 +78,27 @@ pub struct Report {
     pub results: Vec<BackendResult>,
 }
 
-/// Loads a model file, or generates `icosphere:N`.
+/// Loads a model file, or generates `icosphere:N`, `csg:showcase`, `csg:spheres` (8 x 8 CSG spheres
+/// on a ground plane) or `mesh:spheres[:N]` (the same spheres as icospheres of N subdivisions,
+/// default 4: 5120 triangles each).
 pub fn load_input(input: &str) -> Result<Scene> {
+    match input {
+        "csg:showcase" => return Ok(generate::csg_showcase()),
+        "csg:spheres" => return Ok(generate::spheres(8, None)),
+        _ => {}
+    }
+    if let Some(rest) = input.strip_prefix("mesh:spheres") {
+        let level = match rest.strip_prefix(':') {
+            None if rest.is_empty() => 4,
+            Some(n) => n
+                .parse()
+                .ok()
+                .filter(|&n| n <= 8)
+                .with_context(|| format!("'{input}': expected mesh:spheres:N with N <= 8"))?,
+            None => bail!("'{input}': expected mesh:spheres or mesh:spheres:N"),
+        };
+        return Ok(generate::spheres(8, Some(level)));
+    }
     if let Some(n) = input.strip_prefix("icosphere:") {
         let n: u32 = n
             .parse()
