@@ -19,7 +19,9 @@ fn main() -> anyhow::Result<()> {
         match a.as_str() {
             "--size" => {
                 let v = args.next().unwrap_or_default();
-                let (w, h) = v.split_once('x').ok_or_else(|| anyhow::anyhow!("--size WxH"))?;
+                let (w, h) = v
+                    .split_once('x')
+                    .ok_or_else(|| anyhow::anyhow!("--size WxH"))?;
                 (width, height) = (w.parse()?, h.parse()?);
             }
             "--spp" => spp = args.next().unwrap_or_default().parse()?,

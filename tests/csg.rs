@@ -86,13 +86,19 @@ fn render(scene: Scene, camera: &Camera, backend: Backend) -> glint::film::Image
 fn sphere_scene(tessellated: bool) -> Scene {
     let mut s = generate::spheres(1, if tessellated { Some(6) } else { None });
     // Move the ground away so the sphere alone fills the view against the environment.
-    s.instances[0].to_world = Mat4::from_translation(Vec3::new(0.0, -100.0, 0.0)) * s.instances[0].to_world;
+    s.instances[0].to_world =
+        Mat4::from_translation(Vec3::new(0.0, -100.0, 0.0)) * s.instances[0].to_world;
     s
 }
 
 #[test]
 fn csg_sphere_renders_like_a_tessellated_one() {
-    let camera = Camera::look_at(Vec3::new(0.0, 0.4, 1.6), Vec3::new(0.0, 0.4, 0.0), Vec3::Y, 0.6);
+    let camera = Camera::look_at(
+        Vec3::new(0.0, 0.4, 1.6),
+        Vec3::new(0.0, 0.4, 0.0),
+        Vec3::Y,
+        0.6,
+    );
     for backend in backends() {
         let a = render(sphere_scene(false), &camera, backend);
         let b = render(sphere_scene(true), &camera, backend);
@@ -104,14 +110,32 @@ fn csg_sphere_renders_like_a_tessellated_one() {
             .map(|(x, y)| (*x - *y).truncate().abs().element_sum() / 3.0)
             .sum::<f32>()
             / n;
-        let mean: f32 = a.pixels.iter().map(|x| x.truncate().element_sum() / 3.0).sum::<f32>() / n;
+        let mean: f32 = a
+            .pixels
+            .iter()
+            .map(|x| x.truncate().element_sum() / 3.0)
+            .sum::<f32>()
+            / n;
         let covered = a.pixels.iter().filter(|p| p.w > 0.5).count();
-        eprintln!("{backend}: mean {mean:.4}, mean |CSG - mesh| {mean_diff:.5}, {covered} covered pixels");
+        eprintln!(
+            "{backend}: mean {mean:.4}, mean |CSG - mesh| {mean_diff:.5}, {covered} covered pixels"
+        );
         assert!(covered > 1000, "the sphere fills much of the view");
-        assert!(mean_diff < 0.02 * mean, "{backend}: {mean_diff} vs mean {mean}");
+        assert!(
+            mean_diff < 0.02 * mean,
+            "{backend}: {mean_diff} vs mean {mean}"
+        );
         // The same pixels are covered (alpha), up to antialiased rim pixels.
-        let alpha_diff: f32 = a.pixels.iter().zip(&b.pixels).map(|(x, y)| (x.w - y.w).abs()).sum();
-        assert!(alpha_diff < 4.0, "{backend}: coverage differs by {alpha_diff} pixels");
+        let alpha_diff: f32 = a
+            .pixels
+            .iter()
+            .zip(&b.pixels)
+            .map(|(x, y)| (x.w - y.w).abs())
+            .sum();
+        assert!(
+            alpha_diff < 4.0,
+            "{backend}: coverage differs by {alpha_diff} pixels"
+        );
     }
 }
 
@@ -157,10 +181,17 @@ fn lens_depth_through_every_backend() {
             0,
         )
     };
-    let mut scene = generate::single_mesh_scene(generate::box_mesh(Vec3::new(-9.0, -9.0, -9.0), Vec3::new(-8.0, -8.0, -8.0)));
-    scene
-        .csg
-        .push(CsgObject::new(Node::intersection(vec![sphere(-c), sphere(c)]), Mat4::IDENTITY).unwrap());
+    let mut scene = generate::single_mesh_scene(generate::box_mesh(
+        Vec3::new(-9.0, -9.0, -9.0),
+        Vec3::new(-8.0, -8.0, -8.0),
+    ));
+    scene.csg.push(
+        CsgObject::new(
+            Node::intersection(vec![sphere(-c), sphere(c)]),
+            Mat4::IDENTITY,
+        )
+        .unwrap(),
+    );
     let scene = Arc::new(scene);
     let rim = (r * r - c * c).sqrt();
     for backend in backends() {

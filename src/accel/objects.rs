@@ -197,7 +197,9 @@ fn build(items: &mut [(u32, Aabb)], at: usize, nodes: &mut Vec<Node>) {
         .extent()
         .max_position();
     let mid = items.len() / 2;
-    items.select_nth_unstable_by(mid, |a, b| a.1.center()[axis].total_cmp(&b.1.center()[axis]));
+    items.select_nth_unstable_by(mid, |a, b| {
+        a.1.center()[axis].total_cmp(&b.1.center()[axis])
+    });
     let l = nodes.len();
     let blank = Node {
         bounds: Aabb::EMPTY,

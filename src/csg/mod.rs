@@ -43,11 +43,7 @@ pub fn surface_id(leaf: u32, face: u32, flipped: bool) -> u32 {
 
 /// The leaf, face and flip of a surface id.
 pub fn split_surface(id: u32) -> (u32, u32, bool) {
-    (
-        id & LEAF_MASK,
-        (id & !FLIP) >> FACE_SHIFT,
-        id & FLIP != 0,
-    )
+    (id & LEAF_MASK, (id & !FLIP) >> FACE_SHIFT, id & FLIP != 0)
 }
 
 /// Where the ray is inside a solid: from `t0` (entering surface `s0`) to `t1` (leaving surface `s1`).
@@ -143,7 +139,7 @@ impl Intervals {
     #[inline(always)]
     fn boundary(&self, k: usize) -> (f32, u32) {
         let i = &self.items[k / 2];
-        if k % 2 == 0 {
+        if k.is_multiple_of(2) {
             (i.t0, i.s0)
         } else {
             (i.t1, i.s1)
@@ -175,10 +171,19 @@ impl Intervals {
         let (mut in_a, mut in_b, mut cur) = (false, false, false);
         let mut open = (0.0f32, NO_SURFACE);
         loop {
-            let ta = if i < na { a.boundary(i).0 } else { f32::INFINITY };
-            let tb = if j < nb { b.boundary(j).0 } else { f32::INFINITY };
+            let ta = if i < na {
+                a.boundary(i).0
+            } else {
+                f32::INFINITY
+            };
+            let tb = if j < nb {
+                b.boundary(j).0
+            } else {
+                f32::INFINITY
+            };
             let t = ta.min(tb);
-            if !(t < out.limit) {
+            // (NaN ends the sweep too.)
+            if t.partial_cmp(&out.limit) != Some(std::cmp::Ordering::Less) {
                 break;
             }
             let end = t + tol(t);
@@ -375,8 +380,15 @@ impl Query {
         let far_scale = 1.0 + 2.0 * crate::geometry::gamma(3);
         let (mut t0, mut t1) = (self.t_min, self.t_max);
         for a in 0..3 {
-            let (lo, hi) = ((b.min[a] - self.o[a]) * self.inv[a], (b.max[a] - self.o[a]) * self.inv[a]);
-            let (near, far) = if self.inv[a] < 0.0 { (hi, lo) } else { (lo, hi) };
+            let (lo, hi) = (
+                (b.min[a] - self.o[a]) * self.inv[a],
+                (b.max[a] - self.o[a]) * self.inv[a],
+            );
+            let (near, far) = if self.inv[a] < 0.0 {
+                (hi, lo)
+            } else {
+                (lo, hi)
+            };
             let far = far * far_scale;
             t0 = if near > t0 { near } else { t0 };
             t1 = if far < t1 { far } else { t1 };
@@ -410,7 +422,7 @@ impl CsgObject {
         };
         obj.flatten(&root, to_world)?;
         let b = obj.bounds();
-        if !(b.min.is_finite() && b.max.is_finite()) && !b.is_empty() {
+        if !(b.is_empty() || b.min.is_finite() && b.max.is_finite()) {
             return Err("unbounded CSG solid (intersect half-spaces with a bounded solid)".into());
         }
         Ok(obj)
@@ -555,7 +567,10 @@ impl CsgObject {
         }
         if l.limit() < ray.t_max {
             // An early stop left the answer open beyond its limit: evaluate in full.
-            let q = Query { closest: false, ..q };
+            let q = Query {
+                closest: false,
+                ..q
+            };
             let mut l = Intervals::EMPTY;
             self.eval(self.root_index() as u32, &q, &mut l);
             return l.first_in(ray.t_min, ray.t_max);

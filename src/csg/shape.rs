@@ -13,16 +13,31 @@ pub enum Shape {
         radius: f32,
     },
     /// Axis-aligned box from `min` to `max`.
-    Box { min: Vec3, max: Vec3 },
+    Box {
+        min: Vec3,
+        max: Vec3,
+    },
     /// Capped cylinder around the y axis, from y = -height/2 to y = +height/2.
-    Cylinder { radius: f32, height: f32 },
+    Cylinder {
+        radius: f32,
+        height: f32,
+    },
     /// Capped cone around the y axis: base disc of `radius` at y = -height/2, apex at y = +height/2.
-    Cone { radius: f32, height: f32 },
+    Cone {
+        radius: f32,
+        height: f32,
+    },
     /// Torus around the y axis: a tube of radius `minor` whose centre circle (radius `major`) lies in
     /// the xz plane.
-    Torus { major: f32, minor: f32 },
+    Torus {
+        major: f32,
+        minor: f32,
+    },
     /// The solid `normal . p <= offset` (`normal` is unit length).
-    HalfSpace { normal: Vec3, offset: f32 },
+    HalfSpace {
+        normal: Vec3,
+        offset: f32,
+    },
 }
 
 /// Where a line enters (`t0`, face `f0`) and leaves (`t1`, face `f1`) a primitive; `t0 < t1`, either
@@ -476,7 +491,8 @@ fn depressed_quartic(p: f64, q: f64, r: f64, out: &mut [f64; 4]) -> usize {
         return k;
     }
     let m = largest_cubic_root(p, p * p / 4.0 - r, -q * q / 8.0);
-    if !(m > 0.0) {
+    // (Also rejects NaN.)
+    if m.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return 0;
     }
     let s2m = (2.0 * m).sqrt();
@@ -530,7 +546,10 @@ mod tests {
                 }
             }
             let mid = 0.5 * (s.t0.max(-1e3) + s.t1.min(1e3));
-            assert!(shape.contains(o + d * mid), "{shape:?}: mid {mid} not inside");
+            assert!(
+                shape.contains(o + d * mid),
+                "{shape:?}: mid {mid} not inside"
+            );
         }
     }
 

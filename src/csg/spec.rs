@@ -171,7 +171,9 @@ fn positive(what: &str, name: &str, v: f32) -> Result<f32, String> {
     if v.is_finite() && v > 0.0 {
         Ok(v)
     } else {
-        Err(format!("{what}: {name} must be a positive number (got {v})"))
+        Err(format!(
+            "{what}: {name} must be a positive number (got {v})"
+        ))
     }
 }
 
@@ -249,7 +251,9 @@ impl NodeSpec {
             KindSpec::Box(b) => {
                 let (min, max) = (finite3("box", "min", b.min)?, finite3("box", "max", b.max)?);
                 if !min.cmplt(max).all() {
-                    return Err(format!("box: min {min} must be below max {max} on every axis"));
+                    return Err(format!(
+                        "box: min {min} must be below max {max} on every axis"
+                    ));
                 }
                 prim(Shape::Box { min, max }, Mat4::IDENTITY)
             }
@@ -279,7 +283,11 @@ impl NodeSpec {
                     (Some(o), None) if o.is_finite() => o / len,
                     (None, Some(p)) => n.dot(finite3("halfspace", "point", p)?),
                     (None, None) => 0.0,
-                    _ => return Err("halfspace: give `offset` or `point`, not both (and finite)".into()),
+                    _ => {
+                        return Err(
+                            "halfspace: give `offset` or `point`, not both (and finite)".into()
+                        )
+                    }
                 };
                 prim(Shape::HalfSpace { normal: n, offset }, Mat4::IDENTITY)
             }
@@ -329,8 +337,17 @@ mod tests {
         };
         assert_eq!(op, Op::Difference);
         assert_eq!(transform.transform_point3(Vec3::ZERO), Vec3::Y);
-        assert!(matches!(children[0], Node::Primitive { material: 2, shape: Shape::Box { .. }, .. }));
-        assert!(matches!(children[1], Node::Primitive { material: 1, shape: Shape::Sphere { radius, .. }, .. } if radius == 1.3));
+        assert!(matches!(
+            children[0],
+            Node::Primitive {
+                material: 2,
+                shape: Shape::Box { .. },
+                ..
+            }
+        ));
+        assert!(
+            matches!(children[1], Node::Primitive { material: 1, shape: Shape::Sphere { radius, .. }, .. } if radius == 1.3)
+        );
     }
 
     #[test]
@@ -363,13 +380,28 @@ mod tests {
     #[test]
     fn bad_input_is_a_clear_error() {
         for (text, want) in [
-            ("csg = { sphere = { radius = 1, centre = [0, 0, 0] } }", "centre"),
-            ("csg = { sphere = { radius = -1 } }", "radius must be a positive"),
+            (
+                "csg = { sphere = { radius = 1, centre = [0, 0, 0] } }",
+                "centre",
+            ),
+            (
+                "csg = { sphere = { radius = -1 } }",
+                "radius must be a positive",
+            ),
             ("csg = { spheer = { radius = 1 } }", "spheer"),
-            ("csg = { sphere = { radius = 1 }, box = { min = [0,0,0], max = [1,1,1] } }", "exactly one"),
+            (
+                "csg = { sphere = { radius = 1 }, box = { min = [0,0,0], max = [1,1,1] } }",
+                "exactly one",
+            ),
             ("csg = { union = [] }", "at least one operand"),
-            ("csg = { sphere = { radius = 1 }, material = \"nope\" }", "unknown material 'nope'"),
-            ("csg = { box = { min = [0,0,0], max = [1,-1,1] } }", "below max"),
+            (
+                "csg = { sphere = { radius = 1 }, material = \"nope\" }",
+                "unknown material 'nope'",
+            ),
+            (
+                "csg = { box = { min = [0,0,0], max = [1,-1,1] } }",
+                "below max",
+            ),
             ("csg = { cylinder = { radius = 1 } }", "either `height`"),
             ("csg = { material = \"red\" }", "needs one of"),
         ] {

@@ -61,7 +61,10 @@ fn overflow_keeps_the_nearest_and_a_limit() {
     let u = Intervals::combine(Op::Union, &l, &Intervals::EMPTY, tol);
     assert_eq!(u.as_slice().len(), CAPACITY);
     assert!(u.limit() <= l.limit());
-    assert!(u.first_in(31.5, f32::INFINITY).is_none(), "nothing is claimed past the limit");
+    assert!(
+        u.first_in(31.5, f32::INFINITY).is_none(),
+        "nothing is claimed past the limit"
+    );
 
     // An object of 20 spheres in a row: the closest hit is right, whatever lies beyond capacity.
     let spheres: Vec<Node> = (0..20)
@@ -82,7 +85,11 @@ fn overflow_keeps_the_nearest_and_a_limit() {
     // From inside the 18th sphere: the next surface is its far side.
     let r = Ray::new(Vec3::new(51.0, 0.0, 0.0), Vec3::X);
     assert!((obj.intersect(&r).unwrap().0 - 1.0).abs() < 1e-5);
-    assert!(obj.intervals(&Ray::new(Vec3::new(-5.0, 0.0, 0.0), Vec3::X)).limit() < f32::INFINITY);
+    assert!(
+        obj.intervals(&Ray::new(Vec3::new(-5.0, 0.0, 0.0), Vec3::X))
+            .limit()
+            < f32::INFINITY
+    );
 }
 
 /// Sorted, disjoint lists with integer boundaries (so coincidences are exact).
@@ -270,7 +277,9 @@ fn subtracted_surfaces_face_out_of_the_result() {
     )
     .unwrap();
     // Through a face's centre: the sphere covers the whole axis inside the box, so the ray passes.
-    assert!(obj.intersect(&Ray::new(Vec3::new(0.0, 0.0, 5.0), -Vec3::Z)).is_none());
+    assert!(obj
+        .intersect(&Ray::new(Vec3::new(0.0, 0.0, 5.0), -Vec3::Z))
+        .is_none());
     // Towards a corner: box face first (material 0, outward normal)...
     let o = Vec3::new(0.8, 0.8, 5.0);
     let (t, s) = obj.intersect(&Ray::new(o, -Vec3::Z)).unwrap();
@@ -406,7 +415,8 @@ fn secondary_rays_do_not_rehit_their_surface() {
                 let mut n_hits = 0;
                 for _ in 0..300 {
                     let target = m.transform_point3(Vec3::new(rng.f(), rng.f(), rng.f()) * 0.5);
-                    let from = target + Vec3::new(rng.f(), rng.f(), rng.f()).normalize() * size * 4.0;
+                    let from =
+                        target + Vec3::new(rng.f(), rng.f(), rng.f()).normalize() * size * 4.0;
                     let ray = Ray::new(from, (target - from).normalize());
                     let Some((t, s)) = obj.intersect(&ray) else {
                         continue;

@@ -54,7 +54,9 @@ impl TryFrom<TransformFields> for TransformSpec {
             || t.rotate_z.is_some()
             || t.scale.is_some();
         if t.matrix.is_some() && parts {
-            return Err("transform: `matrix` cannot be combined with translate/rotate/scale".into());
+            return Err(
+                "transform: `matrix` cannot be combined with translate/rotate/scale".into(),
+            );
         }
         if !t.to_mat4().is_finite() {
             return Err("transform: values must be finite".into());
@@ -99,16 +101,23 @@ mod tests {
         // (1,0,0) -> scale (2,0,0) -> rotate z 90 (0,2,0) -> translate (1,4,3).
         assert!((p - Vec3::new(1.0, 4.0, 3.0)).length() < 1e-5, "{p}");
         let t = parse("t = { scale = [1, 2, 3] }").unwrap();
-        assert_eq!(t.to_mat4().transform_vector3(Vec3::ONE), Vec3::new(1.0, 2.0, 3.0));
+        assert_eq!(
+            t.to_mat4().transform_vector3(Vec3::ONE),
+            Vec3::new(1.0, 2.0, 3.0)
+        );
         let t = parse("t = { matrix = [1,0,0,0, 0,1,0,0, 0,0,1,0, 5,6,7,1] }").unwrap();
-        assert_eq!(t.to_mat4().transform_point3(Vec3::ZERO), Vec3::new(5.0, 6.0, 7.0));
+        assert_eq!(
+            t.to_mat4().transform_point3(Vec3::ZERO),
+            Vec3::new(5.0, 6.0, 7.0)
+        );
     }
 
     #[test]
     fn typos_and_mixtures_are_errors() {
         let e = parse("t = { translat = [1, 2, 3] }").unwrap_err();
         assert!(e.contains("translat"), "{e}");
-        let e = parse("t = { matrix = [1,0,0,0, 0,1,0,0, 0,0,1,0, 5,6,7,1], scale = 2 }").unwrap_err();
+        let e =
+            parse("t = { matrix = [1,0,0,0, 0,1,0,0, 0,0,1,0, 5,6,7,1], scale = 2 }").unwrap_err();
         assert!(e.contains("matrix"), "{e}");
     }
 }
