@@ -1,7 +1,7 @@
 //! Renders the generated CSG showcase (`scene::generate::csg_showcase`) with each backend named on the
 //! command line (default: the default one) to /tmp/csg/showcase-<backend>.png.
 //!
-//! `cargo run --release --example csg_showcase -- [bvh|grid|embree ...] [--size 640x400] [--spp 64]`
+//! `cargo run --release --example csg_showcase -- [bvh|grid|embree ...] [--size 640x400] [--spp 64] [--depth 4]`
 
 use std::path::Path;
 use std::sync::Arc;
@@ -13,7 +13,7 @@ use glint::scene::{defaults, generate};
 
 fn main() -> anyhow::Result<()> {
     let mut backends = Vec::new();
-    let (mut width, mut height, mut spp) = (640usize, 400usize, 64u32);
+    let (mut width, mut height, mut spp, mut depth) = (640usize, 400usize, 64u32, 4u32);
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {
@@ -25,6 +25,7 @@ fn main() -> anyhow::Result<()> {
                 (width, height) = (w.parse()?, h.parse()?);
             }
             "--spp" => spp = args.next().unwrap_or_default().parse()?,
+            "--depth" => depth = args.next().unwrap_or_default().parse()?,
             b => backends.push(b.parse::<Backend>().map_err(anyhow::Error::msg)?),
         }
     }
@@ -49,7 +50,7 @@ fn main() -> anyhow::Result<()> {
             width,
             height,
             spp,
-            max_depth: 4,
+            max_depth: depth,
             ..Default::default()
         };
         let (image, stats) = render::render(
