@@ -56,8 +56,9 @@ impl Ray {
 /// barycentric coordinates `(u, v)` of the hit (weights of vertices 1 and 2).
 ///
 /// A hit on a CSG object (`Scene::csg`) sets the top bit of `inst` (`CSG_BIT`); the other bits name
-/// the object, `prim` is the surface id (`csg::surface_id`: leaf primitive in bits 0..24, its face in
-/// bits 24..31, bit 31 set where the normal is flipped by a difference), and `u = v = 0`.
+/// the object, `prim` is the surface id (`CsgObject::surface_id`: the leaf primitive in the low bits,
+/// its face (or a mesh operand's triangle) above them, bit 31 set where the normal is flipped by a
+/// difference), and `u = v = 0`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
     pub t: f32,

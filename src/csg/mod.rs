@@ -5,12 +5,16 @@
 //! `accel::objects`), Embree as a user geometry; both call `CsgObject::intersect`/`occluded`.
 //! Interval lists live on the stack (`Intervals`, fixed capacity); nothing is allocated per ray.
 
+pub mod mesh;
 pub mod shape;
 pub mod spec;
+
+use std::sync::Arc;
 
 use glam::{Affine3A, Mat3, Mat4, Vec3};
 
 use crate::geometry::{Aabb, Ray};
+pub use mesh::SolidMesh;
 pub use shape::Shape;
 pub use spec::NodeSpec;
 
@@ -19,16 +23,15 @@ pub use spec::NodeSpec;
 /// limit and says nothing beyond, and queries report no surface there.
 pub const CAPACITY: usize = 16;
 
-/// A surface id: which leaf primitive (low 24 bits), which of its faces (bits 24..31, see
-/// `Shape::normal`) and whether its normal is flipped (bit 31, set by each difference that
-/// subtracts it). `Hit::prim` of a CSG hit is such an id.
+/// A surface id: which leaf primitive (the low `CsgObject::leaf_bits` bits, as few as the object's
+/// leaves need), which of its faces above them (see `Shape::normal`; a mesh operand's triangle) and
+/// whether its normal is flipped (bit 31, toggled by each difference that subtracts it).
+/// `Hit::prim` of a CSG hit is such an id; `CsgObject::split_surface` takes it apart.
 pub const FLIP: u32 = 1 << 31;
-const FACE_SHIFT: u32 = 24;
-const LEAF_MASK: u32 = (1 << FACE_SHIFT) - 1;
 /// The "surface" at an infinite end of an interval (half-spaces): never reported.
-pub const NO_SURFACE: u32 = LEAF_MASK;
+pub const NO_SURFACE: u32 = !FLIP;
 /// Most leaves in one object.
-pub const MAX_LEAVES: usize = LEAF_MASK as usize;
+pub const MAX_LEAVES: usize = 1 << 16;
 /// Most operands an operation node evaluates directly; larger unions and intersections are
 /// regrouped into subtrees of this fan-out (they are associative).
 const MAX_FANOUT: usize = 8;
@@ -36,15 +39,6 @@ const MAX_FANOUT: usize = 8;
 /// one (coincident faces, e.g. A minus B sharing a face, give no speckles), and result intervals or
 /// gaps shorter than that vanish (tangent rays give no one-point hits).
 pub const COINCIDENT: f32 = 1e-5;
-
-pub fn surface_id(leaf: u32, face: u32, flipped: bool) -> u32 {
-    leaf | face << FACE_SHIFT | if flipped { FLIP } else { 0 }
-}
-
-/// The leaf, face and flip of a surface id.
-pub fn split_surface(id: u32) -> (u32, u32, bool) {
-    (id & LEAF_MASK, (id & !FLIP) >> FACE_SHIFT, id & FLIP != 0)
-}
 
 /// Where the ray is inside a solid: from `t0` (entering surface `s0`) to `t1` (leaving surface `s1`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -265,6 +259,12 @@ pub enum Node {
         children: Vec<Node>,
         transform: Mat4,
     },
+    /// A closed triangle mesh as an operand (inside by crossing parity).
+    Mesh {
+        mesh: Arc<SolidMesh>,
+        transform: Mat4,
+        material: u32,
+    },
 }
 
 impl Node {
@@ -287,9 +287,9 @@ impl Node {
     /// This node moved by `m` (applied after its own transform).
     pub fn transformed(mut self, m: Mat4) -> Node {
         match &mut self {
-            Node::Primitive { transform, .. } | Node::Operation { transform, .. } => {
-                *transform = m * *transform
-            }
+            Node::Primitive { transform, .. }
+            | Node::Operation { transform, .. }
+            | Node::Mesh { transform, .. } => *transform = m * *transform,
         }
         self
     }
@@ -307,10 +307,47 @@ impl Node {
     }
 }
 
+/// What a leaf is: an analytic shape or a closed mesh.
+#[derive(Clone, Debug)]
+enum LeafShape {
+    Analytic(Shape),
+    Mesh(Arc<SolidMesh>),
+}
+
+impl LeafShape {
+    fn faces(&self) -> usize {
+        match self {
+            LeafShape::Analytic(_) => 6,
+            LeafShape::Mesh(m) => m.triangle_count(),
+        }
+    }
+
+    fn bounds(&self) -> Aabb {
+        match self {
+            LeafShape::Analytic(s) => s.bounds(),
+            LeafShape::Mesh(m) => m.bounds(),
+        }
+    }
+
+    fn project(&self, face: u32, p: Vec3) -> Vec3 {
+        match self {
+            LeafShape::Analytic(s) => s.project(face, p),
+            LeafShape::Mesh(m) => m.project(face, p),
+        }
+    }
+
+    fn normal(&self, face: u32, p: Vec3) -> Vec3 {
+        match self {
+            LeafShape::Analytic(s) => s.normal(face, p),
+            LeafShape::Mesh(m) => m.normal(face),
+        }
+    }
+}
+
 /// A primitive with its whole transform baked in (leaf to world, and back).
 #[derive(Clone, Debug)]
 struct Leaf {
-    shape: Shape,
+    shape: LeafShape,
     to_local: Affine3A,
     to_world: Affine3A,
     normal_to_world: Mat3,
@@ -340,6 +377,8 @@ pub struct CsgObject {
     leaves: Vec<Leaf>,
     nodes: Vec<Flat>,
     kids: Vec<u32>,
+    /// Bits of a surface id that name the leaf.
+    leaf_bits: u32,
 }
 
 /// The surface at a hit: world position (projected onto the primitive), unit normal (outward of
@@ -419,8 +458,23 @@ impl CsgObject {
             leaves: Vec::new(),
             nodes: Vec::new(),
             kids: Vec::new(),
+            leaf_bits: 0,
         };
         obj.flatten(&root, to_world)?;
+        obj.leaf_bits = (usize::BITS - (obj.leaves.len().max(2) - 1).leading_zeros()).max(1);
+        let faces = obj
+            .leaves
+            .iter()
+            .map(|l| l.shape.faces())
+            .max()
+            .unwrap_or(0);
+        if faces >= (1usize << (31 - obj.leaf_bits)) - 1 {
+            return Err(format!(
+                "a CSG object of {} primitives can hold meshes of at most {} triangles",
+                obj.leaves.len(),
+                (1usize << (31 - obj.leaf_bits)) - 2
+            ));
+        }
         let b = obj.bounds();
         if !(b.is_empty() || b.min.is_finite() && b.max.is_finite()) {
             return Err("unbounded CSG solid (intersect half-spaces with a bounded solid)".into());
@@ -435,36 +489,12 @@ impl CsgObject {
                 shape,
                 transform,
                 material,
-            } => {
-                let w = m * *transform;
-                if !w.is_finite() || w.determinant().abs() < 1e-30 || !w.determinant().is_finite() {
-                    return Err(format!("{shape:?}: transform is degenerate or not finite"));
-                }
-                if self.leaves.len() >= MAX_LEAVES {
-                    return Err(format!("more than {MAX_LEAVES} primitives"));
-                }
-                let to_world = Affine3A::from_mat4(w);
-                let local = shape.bounds();
-                let bounds = if local.min.is_finite() && local.max.is_finite() {
-                    local.transformed(&w)
-                } else {
-                    local
-                };
-                self.leaves.push(Leaf {
-                    shape: *shape,
-                    to_local: to_world.inverse(),
-                    to_world,
-                    normal_to_world: Mat3::from_mat4(w).inverse().transpose(),
-                    material: *material,
-                });
-                self.nodes.push(Flat {
-                    kind: Kind::Leaf,
-                    bounds,
-                    first: self.leaves.len() as u32 - 1,
-                    count: 0,
-                });
-                Ok(self.nodes.len() as u32 - 1)
-            }
+            } => self.leaf(LeafShape::Analytic(*shape), m * *transform, *material),
+            Node::Mesh {
+                mesh,
+                transform,
+                material,
+            } => self.leaf(LeafShape::Mesh(mesh.clone()), m * *transform, *material),
             Node::Operation {
                 op,
                 children,
@@ -481,6 +511,37 @@ impl CsgObject {
                 Ok(self.group(*op, ids))
             }
         }
+    }
+
+    /// Appends a leaf placed by `w` (leaf to world); returns its node index.
+    fn leaf(&mut self, shape: LeafShape, w: Mat4, material: u32) -> Result<u32, String> {
+        if !w.is_finite() || w.determinant().abs() < 1e-30 || !w.determinant().is_finite() {
+            return Err("a CSG primitive's transform is degenerate or not finite".into());
+        }
+        if self.leaves.len() >= MAX_LEAVES {
+            return Err(format!("more than {MAX_LEAVES} primitives"));
+        }
+        let to_world = Affine3A::from_mat4(w);
+        let local = shape.bounds();
+        let bounds = if local.min.is_finite() && local.max.is_finite() {
+            local.transformed(&w)
+        } else {
+            local
+        };
+        self.leaves.push(Leaf {
+            shape,
+            to_local: to_world.inverse(),
+            to_world,
+            normal_to_world: Mat3::from_mat4(w).inverse().transpose(),
+            material,
+        });
+        self.nodes.push(Flat {
+            kind: Kind::Leaf,
+            bounds,
+            first: self.leaves.len() as u32 - 1,
+            count: 0,
+        });
+        Ok(self.nodes.len() as u32 - 1)
     }
 
     /// An operation node over already flattened children, regrouped to `MAX_FANOUT`.
@@ -590,24 +651,53 @@ impl CsgObject {
                 let leaf = &self.leaves[n.first as usize];
                 let o = leaf.to_local.transform_point3(q.o);
                 let d = leaf.to_local.transform_vector3(q.d);
-                for s in leaf.shape.spans(o, d).iter() {
-                    if s.t1 < q.t_min - q.tol(q.t_min) || s.t0 > q.t_max {
-                        continue;
+                let id = |t: f32, face: u32, flipped: bool| {
+                    if t.is_finite() {
+                        self.surface_id(n.first, face, flipped)
+                    } else {
+                        NO_SURFACE
                     }
-                    out.push(Interval {
-                        t0: s.t0,
-                        t1: s.t1,
-                        s0: if s.t0.is_finite() {
-                            surface_id(n.first, s.f0, false)
-                        } else {
-                            NO_SURFACE
-                        },
-                        s1: if s.t1.is_finite() {
-                            surface_id(n.first, s.f1, false)
-                        } else {
-                            NO_SURFACE
-                        },
-                    });
+                };
+                match &leaf.shape {
+                    LeafShape::Analytic(shape) => {
+                        for s in shape.spans(o, d).iter() {
+                            if s.t1 < q.t_min - q.tol(q.t_min) || s.t0 > q.t_max {
+                                continue;
+                            }
+                            out.push(Interval {
+                                t0: s.t0,
+                                t1: s.t1,
+                                s0: id(s.t0, s.f0, false),
+                                s1: id(s.t1, s.f1, false),
+                            });
+                        }
+                    }
+                    LeafShape::Mesh(mesh) => {
+                        let mut c = [mesh::Crossing::default(); mesh::MAX_CROSSINGS];
+                        let (k, overflow) = mesh.crossings(o, d, |t| q.tol(t), &mut c);
+                        // Outside at minus infinity: crossings alternate entering and leaving. A
+                        // surface's normal faces out where the line enters through a triangle that
+                        // faces against it (and leaves through one that faces along it).
+                        for pair in c[..k].chunks_exact(2) {
+                            let (a, b) = (pair[0], pair[1]);
+                            if b.t < q.t_min - q.tol(q.t_min) || a.t > q.t_max || a.t >= b.t {
+                                continue;
+                            }
+                            out.push(Interval {
+                                t0: a.t,
+                                t1: b.t,
+                                s0: id(a.t, a.tri, !a.facing),
+                                s1: id(b.t, b.tri, b.facing),
+                            });
+                        }
+                        if overflow || k % 2 == 1 {
+                            // Crossings dropped (or an odd count from a grazing ray): nothing is
+                            // known beyond the last kept one.
+                            out.limit = out
+                                .limit
+                                .min(c[..k].last().map_or(f32::NEG_INFINITY, |x| x.t));
+                        }
+                    }
                 }
             }
             Kind::Op(op) => {
@@ -686,8 +776,23 @@ impl CsgObject {
 
     /// The surface `id` at (about) world point `p`: `p` projected onto it, its world normal and its
     /// material.
+    /// The surface id of face `face` of leaf `leaf` (see `FLIP`).
+    pub fn surface_id(&self, leaf: u32, face: u32, flipped: bool) -> u32 {
+        leaf | face << self.leaf_bits | if flipped { FLIP } else { 0 }
+    }
+
+    /// The leaf, face and flip of a surface id.
+    pub fn split_surface(&self, id: u32) -> (u32, u32, bool) {
+        let id_ = id & !FLIP;
+        (
+            id_ & ((1 << self.leaf_bits) - 1),
+            id_ >> self.leaf_bits,
+            id & FLIP != 0,
+        )
+    }
+
     pub fn surface(&self, id: u32, p: Vec3) -> CsgSurface {
-        let (leaf, face, flipped) = split_surface(id);
+        let (leaf, face, flipped) = self.split_surface(id);
         let Some(l) = self.leaves.get(leaf as usize) else {
             return CsgSurface {
                 p,

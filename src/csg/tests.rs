@@ -342,7 +342,7 @@ fn coincident_faces_leave_no_speckles() {
         let p = to_world.inverse().transform_point3(ray.at(th));
         if (p.z - 0.3).abs() < 1e-4 {
             floor += 1;
-            let (leaf, _, flipped) = split_surface(s);
+            let (leaf, _, flipped) = obj.split_surface(s);
             assert!(leaf == 1 && flipped);
         } else {
             speckles += 1;
@@ -484,4 +484,106 @@ fn union_early_exit_matches_full_evaluation() {
         hits += full.is_some() as u32;
     }
     assert!(hits > 300, "{hits}");
+}
+
+#[test]
+fn closed_mesh_operand_matches_the_triangle_bvh_and_the_analytic_box() {
+    use crate::accel::{bvh::Bvh, Accel};
+    use crate::scene::generate;
+    use std::sync::Arc;
+    // Alone, a mesh operand finds what the BVH finds over the same triangles, from outside and inside.
+    let ico = generate::icosphere(3, 0.1);
+    let solid = Arc::new(SolidMesh::new(&ico).unwrap());
+    let obj = CsgObject::new(
+        Node::Mesh {
+            mesh: solid,
+            transform: Mat4::IDENTITY,
+            material: 0,
+        },
+        Mat4::IDENTITY,
+    )
+    .unwrap();
+    let bvh = Bvh::build(Arc::new(generate::single_mesh_scene(ico)));
+    let mut rng = Rng(11);
+    let (mut hits, mut inside) = (0, 0);
+    for k in 0..4000 {
+        let o = if k % 2 == 0 {
+            Vec3::new(rng.f(), rng.f(), rng.f()) * 3.0
+        } else {
+            Vec3::new(rng.f(), rng.f(), rng.f()) * 0.5
+        };
+        let d = Vec3::new(rng.f(), rng.f(), rng.f()).normalize();
+        let ray = Ray::new(o, d);
+        let want = bvh.intersect(&ray).map(|h| h.t);
+        let got = obj.intersect(&ray).map(|h| h.0);
+        match (want, got) {
+            (Some(w), Some(g)) => assert!((w - g).abs() <= 1e-6 * w.max(1.0), "{w} vs {g}"),
+            (None, None) => {}
+            _ => panic!("{ray:?}: bvh {want:?}, csg {got:?}"),
+        }
+        hits += want.is_some() as u32;
+        inside += (k % 2 == 1) as u32;
+    }
+    assert!(hits > 2000 && inside > 0);
+
+    // A 12-triangle cube minus a sphere renders as the analytic box minus the sphere.
+    let sphere = || {
+        Node::primitive(
+            Shape::Sphere {
+                center: Vec3::ZERO,
+                radius: 1.3,
+            },
+            1,
+        )
+    };
+    let cube = generate::box_mesh(Vec3::splat(-1.0), Vec3::splat(1.0));
+    let meshed = CsgObject::new(
+        Node::difference(vec![
+            Node::Mesh {
+                mesh: Arc::new(SolidMesh::new(&cube).unwrap()),
+                transform: Mat4::IDENTITY,
+                material: 0,
+            },
+            sphere(),
+        ]),
+        Mat4::from_rotation_y(0.3),
+    )
+    .unwrap();
+    let analytic = CsgObject::new(
+        Node::difference(vec![
+            Node::primitive(
+                Shape::Box {
+                    min: Vec3::splat(-1.0),
+                    max: Vec3::splat(1.0),
+                },
+                0,
+            ),
+            sphere(),
+        ]),
+        Mat4::from_rotation_y(0.3),
+    )
+    .unwrap();
+    let mut same = 0;
+    for _ in 0..4000 {
+        let o = Vec3::new(rng.f(), rng.f(), rng.f()) * 4.0;
+        let d = (Vec3::new(rng.f(), rng.f(), rng.f()) * 0.9 - o).normalize();
+        let ray = Ray::new(o, d);
+        match (meshed.intersect(&ray), analytic.intersect(&ray)) {
+            (Some((tm, sm)), Some((ta, sa))) => {
+                assert!((tm - ta).abs() < 1e-5, "{tm} vs {ta}");
+                let (nm, na) = (
+                    meshed.surface(sm, ray.at(tm)),
+                    analytic.surface(sa, ray.at(ta)),
+                );
+                assert!(nm.n.dot(na.n) > 0.9999, "{} vs {}", nm.n, na.n);
+                assert_eq!(nm.material, na.material);
+                same += 1;
+            }
+            (None, None) => {}
+            (x, y) => panic!("{ray:?}: mesh {x:?}, analytic {y:?}"),
+        }
+    }
+    assert!(same > 1000, "{same}");
+    // An open mesh has no inside.
+    assert!(SolidMesh::new(&generate::quad_grid(2)).is_err());
 }
