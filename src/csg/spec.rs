@@ -15,7 +15,8 @@
 //! (axis y, centred on the origin) or `cylinder { base, top, radius }`; `cone { radius, height }`
 //! (base disc at y = -height/2, apex at +height/2) or `cone { base, apex, radius }`;
 //! `torus { major_radius, minor_radius }` (around the y axis); `halfspace { normal, offset }` (the
-//! solid `normal . p <= offset`) or `halfspace { normal, point }`. Operations `union`,
+//! solid `normal . p <= offset`) or `halfspace { normal, point }`; `mesh = "name"`, a closed mesh
+//! of the scene as an operand (resolved with `NodeSpec::resolve_with`). Operations `union`,
 //! `intersection`, `difference` take arrays of one or more nodes (difference: the first minus all
 //! others). A node without `material` takes its parent's (the root's default comes from the caller).
 //! Unknown keys are errors.
@@ -26,7 +27,9 @@ use glam::{Mat4, Quat, Vec3};
 use serde::de::{self, MapAccess, Visitor};
 use serde::{Deserialize, Deserializer};
 
-use super::{Node, Op, Shape};
+use std::sync::Arc;
+
+use super::{Node, Op, Shape, SolidMesh};
 use crate::scene::transform::TransformSpec;
 
 #[derive(Clone, Debug, PartialEq, Deserialize)]
@@ -80,6 +83,8 @@ pub enum KindSpec {
     Cone(AxialSpec),
     Torus(TorusSpec),
     HalfSpace(HalfSpaceSpec),
+    /// A closed mesh of the scene, by name.
+    Mesh(String),
     Union(Vec<NodeSpec>),
     Intersection(Vec<NodeSpec>),
     Difference(Vec<NodeSpec>),
@@ -100,6 +105,7 @@ const KEYS: &[&str] = &[
     "cone",
     "torus",
     "halfspace",
+    "mesh",
     "union",
     "intersection",
     "difference",
@@ -141,6 +147,7 @@ impl<'de> Deserialize<'de> for NodeSpec {
                         "cone" => KindSpec::Cone(map.next_value()?),
                         "torus" => KindSpec::Torus(map.next_value()?),
                         "halfspace" => KindSpec::HalfSpace(map.next_value()?),
+                        "mesh" => KindSpec::Mesh(map.next_value()?),
                         "union" => KindSpec::Union(map.next_value()?),
                         "intersection" => KindSpec::Intersection(map.next_value()?),
                         "difference" => KindSpec::Difference(map.next_value()?),
@@ -212,6 +219,17 @@ impl NodeSpec {
         material_index: &dyn Fn(&str) -> Option<u32>,
         default_material: u32,
     ) -> Result<Node, String> {
+        self.resolve_with(material_index, &|_| None, default_material)
+    }
+
+    /// As `resolve`, with `mesh_solid` giving the closed mesh of a name for `mesh` operands (`None`:
+    /// no such mesh).
+    pub fn resolve_with(
+        &self,
+        material_index: &dyn Fn(&str) -> Option<u32>,
+        mesh_solid: &dyn Fn(&str) -> Option<Arc<SolidMesh>>,
+        default_material: u32,
+    ) -> Result<Node, String> {
         let material = match &self.material {
             Some(name) => material_index(name)
                 .ok_or_else(|| format!("CSG node: unknown material '{name}'"))?,
@@ -232,7 +250,7 @@ impl NodeSpec {
             }
             let children = kids
                 .iter()
-                .map(|k| k.resolve(material_index, material))
+                .map(|k| k.resolve_with(material_index, mesh_solid, material))
                 .collect::<Result<Vec<_>, _>>()?;
             Ok(Node::Operation {
                 op,
@@ -291,6 +309,11 @@ impl NodeSpec {
                 };
                 prim(Shape::HalfSpace { normal: n, offset }, Mat4::IDENTITY)
             }
+            KindSpec::Mesh(name) => Node::Mesh {
+                mesh: mesh_solid(name).ok_or_else(|| format!("CSG node: unknown mesh '{name}'"))?,
+                transform,
+                material,
+            },
             KindSpec::Union(k) => op(Op::Union, k)?,
             KindSpec::Intersection(k) => op(Op::Intersection, k)?,
             KindSpec::Difference(k) => op(Op::Difference, k)?,
@@ -404,10 +427,27 @@ mod tests {
             ),
             ("csg = { cylinder = { radius = 1 } }", "either `height`"),
             ("csg = { material = \"red\" }", "needs one of"),
+            ("csg = { mesh = \"bunny\" }", "unknown mesh 'bunny'"),
         ] {
             let err = parse(text).and_then(|s| s.resolve(&materials, 0).map(|_| ()));
             let e = err.expect_err(text);
             assert!(e.contains(want), "{text}: {e}");
         }
+    }
+
+    #[test]
+    fn mesh_operands_resolve_by_name() {
+        let cube = Arc::new(
+            SolidMesh::new(&crate::scene::generate::box_mesh(Vec3::ZERO, Vec3::ONE)).unwrap(),
+        );
+        let spec = parse("csg = { difference = [ { mesh = \"cube\", material = \"red\" }, { sphere = { radius = 0.5 } } ] }").unwrap();
+        let meshes = |name: &str| (name == "cube").then(|| cube.clone());
+        let node = spec.resolve_with(&materials, &meshes, 0).unwrap();
+        let Node::Operation { children, .. } = node else {
+            panic!()
+        };
+        assert!(
+            matches!(&children[0], Node::Mesh { material: 1, mesh, .. } if Arc::ptr_eq(mesh, &cube))
+        );
     }
 }
