@@ -7,7 +7,7 @@ use std::collections::HashMap;
 use glam::{Mat4, Vec3, Vec4};
 
 use super::{Instance, Material, Mesh, Scene};
-use crate::csg::{CsgObject, Node, Shape};
+use crate::csg::{CsgObject, Node, Shape, SolidMesh};
 
 /// A unit icosphere with `subdivisions` levels of 4:1 splits (20 * 4^n triangles), optionally displaced
 /// radially by a smooth bumpy function of amplitude `bump` (0 for a sphere).
@@ -195,8 +195,8 @@ fn prim(shape: Shape, material: u32) -> Node {
 }
 
 /// Every CSG primitive and operation on a mesh ground plane (y up): a box minus a sphere, a lens
-/// (sphere n sphere), a tilted torus, a capped cylinder under a cone, and a cube chamfered by a
-/// half-space.
+/// (sphere n sphere), a tilted torus, a capped cylinder under a cone, a cube chamfered by a
+/// half-space, and a closed mesh (an icosphere) drilled through by a cylinder.
 pub fn csg_showcase() -> Scene {
     let mut s = Scene {
         materials: vec![
@@ -279,6 +279,26 @@ pub fn csg_showcase() -> Scene {
                 ),
             ]),
             t(Vec3::new(-1.4, 0.6, 2.2)) * Mat4::from_rotation_y(0.4),
+        ),
+        csg(
+            Node::difference(vec![
+                Node::Mesh {
+                    mesh: std::sync::Arc::new(
+                        SolidMesh::new(&icosphere(3, 0.0)).expect("an icosphere is closed"),
+                    ),
+                    transform: Mat4::from_scale(Vec3::splat(0.7)),
+                    material: 4,
+                },
+                prim(
+                    Shape::Cylinder {
+                        radius: 0.3,
+                        height: 2.0,
+                    },
+                    2,
+                )
+                .transformed(Mat4::from_rotation_x(std::f32::consts::FRAC_PI_2)),
+            ]),
+            t(Vec3::new(3.3, 0.7, 2.2)) * Mat4::from_rotation_y(-0.5),
         ),
     ];
     s
