@@ -534,13 +534,19 @@ impl Accel for Bvh {
     }
 
     fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        // Decided before the walk, so the walk of a scene without CSG compiles as it did before
+        // (testing after it cost 5% on coherent rays).
+        if self.objects.is_empty() {
+            return self.traverse(ray, false);
+        }
         let best = self.traverse(ray, false);
         self.objects
             .intersect(&self.scene.csg, ray, best, crate::geometry::CSG_BIT)
     }
 
     fn occluded(&self, ray: &Ray) -> bool {
-        self.traverse(ray, true).is_some() || self.objects.occluded(&self.scene.csg, ray)
+        self.traverse(ray, true).is_some()
+            || (!self.objects.is_empty() && self.objects.occluded(&self.scene.csg, ray))
     }
 
     fn memory_bytes(&self) -> usize {

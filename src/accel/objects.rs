@@ -69,8 +69,9 @@ impl ObjectBvh {
     }
 
     /// The closest hit on the primitives nearer than `best` (the caller's hit so far), else `best`.
-    /// Hits name their primitive in `Hit::inst` as `tag | index`.
-    #[inline]
+    /// Hits name their primitive in `Hit::inst` as `tag | index`. (Kept out of line, so the callers'
+    /// triangle loops stay as compact as without it.)
+    #[inline(never)]
     pub fn intersect<P: Primitive>(
         &self,
         prims: &[P],
@@ -106,7 +107,7 @@ impl ObjectBvh {
     }
 
     /// Whether any primitive is hit in the ray's window.
-    #[inline]
+    #[inline(never)]
     pub fn occluded<P: Primitive>(&self, prims: &[P], ray: &Ray) -> bool {
         if self.nodes.is_empty() {
             return false;
