@@ -54,6 +54,11 @@ impl Ray {
 
 /// The closest intersection of a ray: which triangle of which instance, where along the ray, and the
 /// barycentric coordinates `(u, v)` of the hit (weights of vertices 1 and 2).
+///
+/// A hit on a CSG object (`Scene::csg`) sets the top bit of `inst` (`CSG_BIT`); the other bits name
+/// the object, `prim` is the surface id (`CsgObject::surface_id`: the leaf primitive in the low bits,
+/// its face (or a mesh operand's triangle) above them, bit 31 set where the normal is flipped by a
+/// difference), and `u = v = 0`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
     pub t: f32,
@@ -61,6 +66,27 @@ pub struct Hit {
     pub v: f32,
     pub inst: u32,
     pub prim: u32,
+}
+
+/// Marks `Hit::inst` as a CSG object index.
+pub const CSG_BIT: u32 = 1 << 31;
+
+impl Hit {
+    /// A hit on surface `surface` of CSG object `object` at distance `t`.
+    pub fn csg_hit(t: f32, object: u32, surface: u32) -> Self {
+        Hit {
+            t,
+            u: 0.0,
+            v: 0.0,
+            inst: object | CSG_BIT,
+            prim: surface,
+        }
+    }
+
+    /// The CSG object and surface id, for a hit on a CSG object.
+    pub fn csg(&self) -> Option<(u32, u32)> {
+        (self.inst & CSG_BIT != 0).then_some((self.inst & !CSG_BIT, self.prim))
+    }
 }
 
 /// An axis-aligned bounding box; the empty box has `min > max`.

@@ -4,6 +4,7 @@
 pub mod accel;
 pub mod bench;
 pub mod cli;
+pub mod csg;
 pub mod film;
 pub mod geometry;
 pub mod render;

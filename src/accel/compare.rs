@@ -102,6 +102,9 @@ pub const ALPHA_MARGIN: f32 = 0.02;
 
 fn on_alpha_edge(scene: &Scene, hit: &Option<Hit>) -> bool {
     hit.is_some_and(|h| {
+        if h.csg().is_some() {
+            return false;
+        }
         let mesh = scene.mesh_of(h.inst);
         let mat = &scene.materials[mesh.material as usize];
         match mat.alpha_mode {
@@ -129,7 +132,9 @@ fn edge_distance(scene: &Scene, h: &Hit) -> f32 {
 fn on_edge(scene: &Scene, hit: &Option<Hit>) -> bool {
     let size = scene.bounds().extent().length();
     hit.is_some_and(|h| {
-        h.u.min(h.v).min(1.0 - h.u - h.v) < EDGE_BARYCENTRIC
+        // CSG surfaces have no triangle edges (their own edges are where faces meet at an angle,
+        // which `grazes` and the distance tolerance cover).
+        h.csg().is_none() && h.u.min(h.v).min(1.0 - h.u - h.v) < EDGE_BARYCENTRIC
             || edge_distance(scene, &h) < EDGE_RELATIVE * size
     })
 }
@@ -155,9 +160,14 @@ fn close(scene: &Scene, magnitudes: &[f32], ray: &Ray, x: &Hit, y: &Hit) -> bool
     if diff <= T_TOLERANCE * t + 64.0 * f32::EPSILON * world {
         return true;
     }
-    let magnitude = world
-        .max(magnitudes[x.inst as usize])
-        .max(magnitudes[y.inst as usize]);
+    let of = |h: &Hit| match h.csg() {
+        Some((object, _)) => {
+            let b = scene.csg[object as usize].bounds();
+            b.min.abs().max(b.max.abs()).max_element()
+        }
+        None => magnitudes[h.inst as usize],
+    };
+    let magnitude = world.max(of(x)).max(of(y));
     let cos = incidence(scene, ray, x)
         .min(incidence(scene, ray, y))
         .max(GRAZING_COS);
@@ -189,10 +199,9 @@ fn object_magnitudes(scene: &Scene) -> Vec<f32> {
         .collect()
 }
 
-/// |cos| of the angle between the ray and the hit triangle's normal.
+/// |cos| of the angle between the ray and the hit surface's geometric normal.
 fn incidence(scene: &Scene, ray: &Ray, h: &Hit) -> f32 {
-    let [a, b, c] = scene.world_triangle(h.inst, h.prim);
-    let n = (b - a).cross(c - a).normalize_or_zero();
+    let (_, n) = scene.hit_geometry(h, ray);
     n.dot(ray.d.normalize()).abs()
 }
 

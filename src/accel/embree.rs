@@ -16,7 +16,8 @@ use std::sync::{Arc, Mutex};
 use embree4_sys as sys;
 
 use super::{Accel, AccelError};
-use crate::geometry::{Hit, Ray};
+use crate::csg::CsgObject;
+use crate::geometry::{Hit, Ray, CSG_BIT};
 use crate::scene::{Mesh, Scene};
 
 /// `RTC_INVALID_GEOMETRY_ID`: the geomID/instID of "no hit" / "not inside an instance".
@@ -78,14 +79,17 @@ impl RayHit {
     }
 
     /// Our hit from Embree's answer. Top-level geometry IDs are instance indices (see `build`): an
-    /// instanced hit names its instance in `instID[0]`, a flattened one in `geomID`.
-    fn hit(&self) -> Option<Hit> {
+    /// instanced hit names its instance in `instID[0]`, a flattened one in `geomID`; IDs from
+    /// `csg_base` on are CSG objects (user geometries), reported with `CSG_BIT`.
+    fn hit(&self, csg_base: u32) -> Option<Hit> {
         let h = &self.rh.hit;
         if h.geomID == INVALID_ID {
             return None;
         }
         let inst = if h.instID[0] != INVALID_ID {
             h.instID[0]
+        } else if h.geomID >= csg_base {
+            (h.geomID - csg_base) | CSG_BIT
         } else {
             h.geomID
         };
@@ -177,6 +181,118 @@ unsafe extern "C" fn alpha_filter(args: *const sys::RTCFilterFunctionNArguments)
     }
 }
 
+/// Bounds callback of a CSG user geometry (one primitive: the whole object).
+///
+/// # Safety
+/// Called by Embree only; the user pointer is the `CsgObject` set in `populate`.
+unsafe extern "C" fn csg_bounds(args: *const sys::RTCBoundsFunctionArguments) {
+    // SAFETY: Embree passes valid arguments; the user pointer outlives the geometry (see `populate`).
+    let (args, object) = unsafe {
+        let a = &*args;
+        (a, &*(a.geometryUserPtr as *const CsgObject))
+    };
+    let b = object.bounds();
+    // SAFETY: `bounds_o` points to one RTCBounds for Embree to read.
+    unsafe {
+        *args.bounds_o = sys::RTCBounds {
+            lower_x: b.min.x,
+            lower_y: b.min.y,
+            lower_z: b.min.z,
+            align0: 0.0,
+            upper_x: b.max.x,
+            upper_y: b.max.y,
+            upper_z: b.max.z,
+            align1: 0.0,
+        };
+    }
+}
+
+/// The world ray in lane `lane` of an `RTCRayN` of `n` lanes (SOA, 4 bytes a field: org_x, org_y,
+/// org_z, tnear, dir_x, dir_y, dir_z, time, tfar, ...). Embree hits are in `(tnear, tfar]`, CSG hits in
+/// `(t_min, t_max)`: `t_max` is the float after `tfar`.
+///
+/// # Safety
+/// `ray` must hold `n` lanes of at least 9 fields.
+unsafe fn lane_ray(ray: *const u32, n: usize, lane: usize) -> Ray {
+    // SAFETY: per the function's contract.
+    let f = |k: usize| f32::from_bits(unsafe { *ray.add(k * n + lane) });
+    Ray {
+        o: glam::Vec3::new(f(0), f(1), f(2)),
+        d: glam::Vec3::new(f(4), f(5), f(6)),
+        t_min: f(3),
+        t_max: f(8).next_up(),
+        seed: 0,
+    }
+}
+
+/// Intersect callback of a CSG user geometry, for any packet width `N`: writes the closest CSG hit
+/// into the lanes' `RTCRayHitN`. Fields up to `instID[0]` have the same SOA layout in 4.2 and 4.4
+/// (4.4's `instPrimID` follows them and is left alone: glint never reads it).
+///
+/// # Safety
+/// Called by Embree only, with an intersect callback's arguments; the user pointer is the
+/// `CsgObject` set in `populate`.
+unsafe extern "C" fn csg_intersect(args: *const sys::RTCIntersectFunctionNArguments) {
+    // SAFETY: Embree passes valid arguments; the user pointer outlives the geometry.
+    let (args, object) = unsafe {
+        let a = &*args;
+        (a, &*(a.geometryUserPtr as *const CsgObject))
+    };
+    let n = args.N as usize;
+    let ray = args.rayhit as *mut u32;
+    // RTCRayHitN: 12 ray fields of n lanes, then the hit: Ng_x, Ng_y, Ng_z, u, v, primID, geomID,
+    // instID[0].
+    // SAFETY: the hit block starts right after the ray block of the same RTCRayHitN.
+    let hit = unsafe { ray.add(12 * n) };
+    for lane in 0..n {
+        // SAFETY: `valid` has n lanes; the ray and hit blocks hold n lanes of each field, and the
+        // wrapper handed to Embree (RayHit / padded packets) covers them.
+        unsafe {
+            if *args.valid.add(lane) == 0 {
+                continue;
+            }
+            let r = lane_ray(ray, n, lane);
+            if let Some((t, surface)) = object.intersect(&r) {
+                let put = |base: *mut u32, k: usize, v: u32| *base.add(k * n + lane) = v;
+                put(ray, 8, t.to_bits());
+                put(hit, 0, 0f32.to_bits());
+                put(hit, 1, 0f32.to_bits());
+                put(hit, 2, 0f32.to_bits());
+                put(hit, 3, 0f32.to_bits());
+                put(hit, 4, 0f32.to_bits());
+                put(hit, 5, surface);
+                put(hit, 6, args.geomID);
+                put(hit, 7, INVALID_ID);
+            }
+        }
+    }
+}
+
+/// Occluded callback of a CSG user geometry, for any `N`: sets `tfar` to -inf where it is hit.
+///
+/// # Safety
+/// As for `csg_intersect`.
+unsafe extern "C" fn csg_occluded(args: *const sys::RTCOccludedFunctionNArguments) {
+    // SAFETY: Embree passes valid arguments; the user pointer outlives the geometry.
+    let (args, object) = unsafe {
+        let a = &*args;
+        (a, &*(a.geometryUserPtr as *const CsgObject))
+    };
+    let n = args.N as usize;
+    let ray = args.ray as *mut u32;
+    for lane in 0..n {
+        // SAFETY: `valid` and the ray block hold n lanes.
+        unsafe {
+            if *args.valid.add(lane) == 0 {
+                continue;
+            }
+            if object.occluded(&lane_ray(ray, n, lane)) {
+                *ray.add(8 * n + lane) = f32::NEG_INFINITY.to_bits();
+            }
+        }
+    }
+}
+
 /// Collects Embree's error messages (the 4.2 API has no "last error message" call).
 ///
 /// # Safety
@@ -216,6 +332,8 @@ pub struct EmbreeAccel {
     children: Vec<sys::RTCScene>,
     /// Whether any geometry has the alpha filter, i.e. whether queries must publish their world rays.
     filtered: bool,
+    /// Geometry ID of CSG object 0 (the number of instances); object `k` has ID `csg_base + k`.
+    csg_base: u32,
     /// Messages from Embree's error callback; boxed so the pointer given to Embree stays put.
     errors: Box<Mutex<Vec<String>>>,
     /// Bytes the device holds, from its memory monitor; boxed for the same reason.
@@ -249,6 +367,7 @@ impl EmbreeAccel {
             top: ptr::null_mut(),
             children: Vec::new(),
             filtered: false,
+            csg_base: 0,
             errors: Box::new(Mutex::new(Vec::new())),
             memory: Box::new(AtomicIsize::new(0)),
             scene,
@@ -327,6 +446,39 @@ impl EmbreeAccel {
                 sys::rtcReleaseGeometry(geom);
             }
             self.check("attaching a geometry")?;
+        }
+        self.csg_base = u32::try_from(scene.instances.len())
+            .map_err(|_| AccelError::Embree("too many instances".into()))?;
+        for (k, object) in scene.csg.iter().enumerate() {
+            let id = self
+                .csg_base
+                .checked_add(k as u32)
+                .filter(|&id| id != INVALID_ID)
+                .ok_or_else(|| AccelError::Embree("too many geometries".into()))?;
+            // SAFETY: the device is live; the user pointer is a CsgObject inside the scene that `self`
+            // keeps alive (through its Arc) and never mutates, so it outlives every callback.
+            let geom = unsafe {
+                let g = sys::rtcNewGeometry(self.device, sys::RTCGeometryType::USER);
+                if !g.is_null() {
+                    sys::rtcSetGeometryUserPrimitiveCount(g, 1);
+                    sys::rtcSetGeometryUserData(g, object as *const CsgObject as *mut c_void);
+                    sys::rtcSetGeometryBoundsFunction(g, Some(csg_bounds), ptr::null_mut());
+                    sys::rtcSetGeometryIntersectFunction(g, Some(csg_intersect));
+                    sys::rtcSetGeometryOccludedFunction(g, Some(csg_occluded));
+                    sys::rtcCommitGeometry(g);
+                }
+                g
+            };
+            if geom.is_null() {
+                return Err(self.error("creating a CSG user geometry"));
+            }
+            self.check("creating a CSG user geometry")?;
+            // SAFETY: `geom` is live and committed; the scene keeps its own reference.
+            unsafe {
+                sys::rtcAttachGeometryByID(self.top, geom, id);
+                sys::rtcReleaseGeometry(geom);
+            }
+            self.check("attaching a CSG geometry")?;
         }
         // SAFETY: the top scene is live and fully populated.
         unsafe { sys::rtcCommitScene(self.top) };
@@ -469,7 +621,7 @@ impl EmbreeAccel {
                 // The ray id indexes `rays`, where the alpha filter finds the world ray.
                 let mut rh = RayHit::new(ray, i as u32);
                 self.intersect1(&mut rh);
-                *slot = rh.hit();
+                *slot = rh.hit(self.csg_base);
             }
         });
     }
@@ -529,7 +681,7 @@ impl Accel for EmbreeAccel {
     fn intersect(&self, ray: &Ray) -> Option<Hit> {
         let mut rh = RayHit::new(ray, 0);
         self.query(std::slice::from_ref(ray), || self.intersect1(&mut rh));
-        rh.hit()
+        rh.hit(self.csg_base)
     }
 
     fn occluded(&self, ray: &Ray) -> bool {
@@ -602,7 +754,7 @@ mod tests {
         };
         let before = bytes(&pair[1]);
         accel.intersect1(&mut pair[0]);
-        assert!(pair[0].hit().is_some(), "the triangle is hit");
+        assert!(pair[0].hit(u32::MAX).is_some(), "the triangle is hit");
         assert_eq!(
             before,
             bytes(&pair[1]),

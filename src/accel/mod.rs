@@ -8,6 +8,7 @@ pub mod embree;
 pub mod flat;
 pub mod grid;
 pub mod list;
+pub mod objects;
 #[cfg(feature = "obvhs")]
 pub mod obvhs;
 #[cfg(test)]
@@ -102,9 +103,11 @@ pub enum AccelError {
     ObvhsUnavailable,
     #[error("embree: {0}")]
     Embree(String),
+    #[error("the {0} backend does not support CSG objects (use --backend bvh, grid or embree)")]
+    CsgUnsupported(&'static str),
 }
 
-/// Builds the chosen backend over the scene's instances.
+/// Builds the chosen backend over the scene's instances and CSG objects.
 pub fn build(scene: Arc<Scene>, backend: Backend) -> Result<Box<dyn Accel>, AccelError> {
     match backend {
         Backend::Bvh => Ok(Box::new(bvh::Bvh::build(scene))),
@@ -113,6 +116,8 @@ pub fn build(scene: Arc<Scene>, backend: Backend) -> Result<Box<dyn Accel>, Acce
         Backend::Embree => Ok(Box::new(embree::EmbreeAccel::build(scene)?)),
         #[cfg(not(feature = "embree"))]
         Backend::Embree => Err(AccelError::EmbreeUnavailable),
+        #[cfg(feature = "obvhs")]
+        Backend::Obvhs if !scene.csg.is_empty() => Err(AccelError::CsgUnsupported("obvhs")),
         #[cfg(feature = "obvhs")]
         Backend::Obvhs => Ok(Box::new(obvhs::ObvhsAccel::build(scene))),
         #[cfg(not(feature = "obvhs"))]

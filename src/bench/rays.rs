@@ -78,8 +78,27 @@ pub struct Report {
     pub results: Vec<BackendResult>,
 }
 
-/// Loads a model file, or generates `icosphere:N`.
+/// Loads a model file, or generates `icosphere:N`, `csg:showcase`, `csg:spheres` (8 x 8 CSG spheres
+/// on a ground plane) or `mesh:spheres[:N]` (the same spheres as icospheres of N subdivisions,
+/// default 4: 5120 triangles each).
 pub fn load_input(input: &str) -> Result<Scene> {
+    match input {
+        "csg:showcase" => return Ok(generate::csg_showcase()),
+        "csg:spheres" => return Ok(generate::spheres(8, None)),
+        _ => {}
+    }
+    if let Some(rest) = input.strip_prefix("mesh:spheres") {
+        let level = match rest.strip_prefix(':') {
+            None if rest.is_empty() => 4,
+            Some(n) => n
+                .parse()
+                .ok()
+                .filter(|&n| n <= 8)
+                .with_context(|| format!("'{input}': expected mesh:spheres:N with N <= 8"))?,
+            None => bail!("'{input}': expected mesh:spheres or mesh:spheres:N"),
+        };
+        return Ok(generate::spheres(8, Some(level)));
+    }
     if let Some(n) = input.strip_prefix("icosphere:") {
         let n: u32 = n
             .parse()
@@ -134,15 +153,13 @@ pub fn generate_rays(scene: &Scene, accel: &dyn Accel, width: usize, height: usi
         .enumerate()
         .filter_map(|(i, r)| {
             let h = accel.intersect(r)?;
-            let [a, b, c] = scene.world_triangle(h.inst, h.prim);
-            let mut n = (b - a).cross(c - a).normalize_or_zero();
+            let (p, mut n) = scene.hit_geometry(&h, r);
             if n == Vec3::ZERO {
                 return None;
             }
             if n.dot(r.d) > 0.0 {
                 n = -n;
             }
-            let p = a * (1.0 - h.u - h.v) + b * h.u + c * h.v;
             let o = offset_ray_origin(p, n);
             let u = |k: u64| unit(mix64(i as u64 * 4 + k));
             let shadow = lights

@@ -85,7 +85,8 @@ pub struct ConvergenceArgs {
 #[derive(clap::Args, Debug)]
 pub struct RaysArgs {
     /// A .gltf, .glb or .obj file, or `icosphere:N` for a generated displaced icosphere of 20*4^N
-    /// triangles (N = 8 gives 1.3M).
+    /// triangles (N = 8 gives 1.3M), or `csg:showcase`, `csg:spheres` (64 CSG spheres on a ground
+    /// plane) or `mesh:spheres[:N]` (the same spheres as icospheres of N subdivisions, default 4).
     pub input: String,
     /// Backends, comma separated (default: all built in).
     #[arg(long, value_delimiter = ',')]

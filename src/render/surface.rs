@@ -34,6 +34,9 @@ pub fn emission(scene: &Scene, mat: &Material, uv: Vec2) -> Vec3 {
 
 impl SurfaceInteraction {
     pub fn new(scene: &Scene, hit: &Hit, ray: &Ray) -> Self {
+        if let Some((object, surface)) = hit.csg() {
+            return Self::from_csg(scene, hit, ray, object, surface);
+        }
         let inst = &scene.instances[hit.inst as usize];
         let mesh = &scene.meshes[inst.mesh as usize];
         let mat = &scene.materials[mesh.material as usize];
@@ -100,6 +103,34 @@ impl SurfaceInteraction {
             ng,
             uv,
             bsdf,
+            emission: emission(scene, mat, uv),
+            inst: hit.inst,
+            prim: hit.prim,
+        }
+    }
+}
+
+impl SurfaceInteraction {
+    /// A hit on a CSG object: the point projected back onto its primitive (so offsetting it is as
+    /// safe as for a triangle's interpolated point), the primitive's normal (flipped where it was
+    /// subtracted) as both geometric and shading normal, and the material of that surface; no UVs.
+    pub fn from_csg(scene: &Scene, hit: &Hit, ray: &Ray, object: u32, surface: u32) -> Self {
+        let s = scene.csg[object as usize].surface(surface, ray.at(hit.t));
+        let mat = &scene.materials[s.material as usize];
+        let ng = if s.n.dot(ray.d) > 0.0 { -s.n } else { s.n };
+        let uv = Vec2::ZERO;
+        let base = scene.base_color(mat, uv);
+        Self {
+            p: s.p,
+            ng,
+            uv,
+            bsdf: Bsdf::new(
+                Frame::from_normal(ng),
+                base.xyz(),
+                mat.metallic,
+                mat.roughness,
+                mat.specular,
+            ),
             emission: emission(scene, mat, uv),
             inst: hit.inst,
             prim: hit.prim,

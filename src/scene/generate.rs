@@ -1,11 +1,13 @@
-//! Procedural meshes for tests and benchmarks: a subdivided icosphere (closed, watertight by
-//! construction, with shared vertices) and a helper that wraps one mesh into a Scene.
+//! Procedural meshes and scenes for tests and benchmarks: a subdivided icosphere (closed, watertight by
+//! construction, with shared vertices), helpers that wrap meshes into a Scene, and CSG scenes (a
+//! showcase of every primitive and operation, and rows of spheres as CSG or as meshes).
 
 use std::collections::HashMap;
 
-use glam::{Mat4, Vec3};
+use glam::{Mat4, Vec3, Vec4};
 
 use super::{Instance, Material, Mesh, Scene};
+use crate::csg::{CsgObject, Node, Shape, SolidMesh};
 
 /// A unit icosphere with `subdivisions` levels of 4:1 splits (20 * 4^n triangles), optionally displaced
 /// radially by a smooth bumpy function of amplitude `bump` (0 for a sphere).
@@ -154,6 +156,201 @@ pub fn single_mesh_scene(mut mesh: Mesh) -> Scene {
         },
         ..Default::default()
     }
+}
+
+/// A plain dielectric material of colour `rgb`.
+pub fn matte(name: &str, rgb: [f32; 3], roughness: f32) -> Material {
+    Material {
+        name: name.into(),
+        base_color: Vec4::new(rgb[0], rgb[1], rgb[2], 1.0),
+        metallic: 0.0,
+        roughness,
+        ..Default::default()
+    }
+}
+
+/// A square ground plane of side `size` in y = 0, centred on the origin (instance of `meshes[mesh]`).
+fn ground(scene: &mut Scene, size: f32, material: u32) {
+    let mut m = quad_grid(1);
+    m.name = "ground".into();
+    m.material = material;
+    for n in &mut m.normals {
+        *n = Vec3::Y;
+    }
+    let to_world = Mat4::from_translation(Vec3::new(-size / 2.0, 0.0, size / 2.0))
+        * Mat4::from_rotation_x(-std::f32::consts::FRAC_PI_2)
+        * Mat4::from_scale(Vec3::splat(size));
+    scene.meshes.push(m);
+    scene
+        .instances
+        .push(Instance::new(scene.meshes.len() as u32 - 1, to_world));
+}
+
+fn csg(node: Node, to_world: Mat4) -> CsgObject {
+    CsgObject::new(node, to_world).expect("generated CSG objects are bounded")
+}
+
+fn prim(shape: Shape, material: u32) -> Node {
+    Node::primitive(shape, material)
+}
+
+/// Every CSG primitive and operation on a mesh ground plane (y up): a box minus a sphere, a lens
+/// (sphere n sphere), a tilted torus, a capped cylinder under a cone, a cube chamfered by a
+/// half-space, and a closed mesh (an icosphere) drilled through by a cylinder.
+pub fn csg_showcase() -> Scene {
+    let mut s = Scene {
+        materials: vec![
+            matte("ground", [0.6, 0.6, 0.6], 0.8),
+            matte("red", [0.8, 0.15, 0.1], 0.4),
+            matte("gold", [0.9, 0.7, 0.2], 0.3),
+            matte("blue", [0.15, 0.3, 0.85], 0.3),
+            matte("green", [0.2, 0.7, 0.25], 0.5),
+            matte("white", [0.85, 0.85, 0.85], 0.5),
+        ],
+        ..Default::default()
+    };
+    ground(&mut s, 12.0, 0);
+    let (box_, sphere) = (
+        Shape::Box {
+            min: Vec3::splat(-1.0),
+            max: Vec3::splat(1.0),
+        },
+        |center: Vec3, radius: f32| Shape::Sphere { center, radius },
+    );
+    let t = Mat4::from_translation;
+    s.csg = vec![
+        csg(
+            Node::difference(vec![prim(box_, 1), prim(sphere(Vec3::ZERO, 1.3), 2)]),
+            t(Vec3::new(-3.0, 1.0, 0.0)) * Mat4::from_rotation_y(0.5),
+        ),
+        csg(
+            Node::intersection(vec![
+                prim(sphere(Vec3::new(-0.6, 0.0, 0.0), 1.0), 3),
+                prim(sphere(Vec3::new(0.6, 0.0, 0.0), 1.0), 3),
+            ]),
+            t(Vec3::new(0.0, 0.81, 0.0)) * Mat4::from_rotation_y(1.2),
+        ),
+        csg(
+            prim(
+                Shape::Torus {
+                    major: 0.8,
+                    minor: 0.3,
+                },
+                2,
+            ),
+            t(Vec3::new(3.0, 1.1, 0.0)) * Mat4::from_rotation_x(1.1),
+        ),
+        csg(
+            Node::union(vec![
+                prim(
+                    Shape::Cylinder {
+                        radius: 0.4,
+                        height: 1.2,
+                    },
+                    4,
+                )
+                .transformed(t(Vec3::new(0.0, 0.6, 0.0))),
+                prim(
+                    Shape::Cone {
+                        radius: 0.55,
+                        height: 0.8,
+                    },
+                    1,
+                )
+                .transformed(t(Vec3::new(0.0, 1.6, 0.0))),
+            ]),
+            t(Vec3::new(1.6, 0.0, 2.2)),
+        ),
+        csg(
+            Node::intersection(vec![
+                prim(
+                    Shape::Box {
+                        min: Vec3::splat(-0.6),
+                        max: Vec3::splat(0.6),
+                    },
+                    5,
+                ),
+                prim(
+                    Shape::HalfSpace {
+                        normal: Vec3::ONE.normalize(),
+                        offset: 0.75,
+                    },
+                    3,
+                ),
+            ]),
+            t(Vec3::new(-1.4, 0.6, 2.2)) * Mat4::from_rotation_y(0.4),
+        ),
+        csg(
+            Node::difference(vec![
+                Node::Mesh {
+                    mesh: std::sync::Arc::new(
+                        SolidMesh::new(&icosphere(3, 0.0)).expect("an icosphere is closed"),
+                    ),
+                    transform: Mat4::from_scale(Vec3::splat(0.7)),
+                    material: 4,
+                },
+                prim(
+                    Shape::Cylinder {
+                        radius: 0.3,
+                        height: 2.0,
+                    },
+                    2,
+                )
+                .transformed(Mat4::from_rotation_x(std::f32::consts::FRAC_PI_2)),
+            ]),
+            t(Vec3::new(3.3, 0.7, 2.2)) * Mat4::from_rotation_y(-0.5),
+        ),
+    ];
+    s
+}
+
+/// `n x n` spheres of radius 0.4 a unit apart on a ground plane: CSG spheres, or (`Some(level)`)
+/// instances of one icosphere of that many subdivisions.
+pub fn spheres(n: u32, tessellated: Option<u32>) -> Scene {
+    let mut s = Scene {
+        materials: vec![
+            matte("ground", [0.6, 0.6, 0.6], 0.8),
+            matte("sphere", [0.8, 0.3, 0.2], 0.4),
+        ],
+        ..Default::default()
+    };
+    ground(&mut s, n as f32 + 2.0, 0);
+    let centers = (0..n * n).map(|k| {
+        Vec3::new(
+            (k % n) as f32 - (n - 1) as f32 / 2.0,
+            0.4,
+            (k / n) as f32 - (n - 1) as f32 / 2.0,
+        )
+    });
+    match tessellated {
+        Some(level) => {
+            let mut m = icosphere(level, 0.0);
+            m.material = 1;
+            s.meshes.push(m);
+            let mesh = s.meshes.len() as u32 - 1;
+            for c in centers {
+                s.instances.push(Instance::new(
+                    mesh,
+                    Mat4::from_translation(c) * Mat4::from_scale(Vec3::splat(0.4)),
+                ));
+            }
+        }
+        None => {
+            for c in centers {
+                s.csg.push(csg(
+                    prim(
+                        Shape::Sphere {
+                            center: Vec3::ZERO,
+                            radius: 1.0,
+                        },
+                        1,
+                    ),
+                    Mat4::from_translation(c) * Mat4::from_scale(Vec3::splat(0.4)),
+                ));
+            }
+        }
+    }
+    s
 }
 
 #[cfg(test)]

@@ -15,7 +15,8 @@ use std::path::{Path, PathBuf};
 
 use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 
-use crate::geometry::{Aabb, Ray};
+use crate::csg::CsgObject;
+use crate::geometry::{Aabb, Hit, Ray};
 pub use envmap::EnvMap;
 pub use error::LoadError;
 pub use texture::{Texture, Wrap};
@@ -421,6 +422,8 @@ pub struct Scene {
     pub textures: Vec<Texture>,
     pub lights: Vec<Light>,
     pub cameras: Vec<Camera>,
+    /// Constructive-solid-geometry objects, hit as `Hit::csg` (see `geometry::Hit`).
+    pub csg: Vec<CsgObject>,
     pub stats: SceneStats,
     /// Non-fatal problems met while loading (skipped primitives, dropped triangles), one line each.
     pub warnings: Vec<String>,
@@ -479,6 +482,11 @@ impl Scene {
             }
             if !inst.to_world.is_finite() {
                 return err(format!("instance {i}: transform is not finite"));
+            }
+        }
+        for (i, c) in self.csg.iter().enumerate() {
+            if let Some(m) = c.materials().find(|&m| m as usize >= self.materials.len()) {
+                return err(format!("CSG object {i}: material {m} out of range"));
             }
         }
         Ok(())
@@ -550,15 +558,27 @@ impl Scene {
         &self.materials[self.mesh_of(inst).material as usize]
     }
 
-    /// World-space bounds of every instance.
+    /// World-space bounds of every instance and CSG object.
     pub fn bounds(&self) -> Aabb {
-        self.instances.iter().fold(Aabb::EMPTY, |b, inst| {
+        let meshes = self.instances.iter().fold(Aabb::EMPTY, |b, inst| {
             b.union(
                 self.meshes[inst.mesh as usize]
                     .bounds()
                     .transformed(&inst.to_world),
             )
-        })
+        });
+        self.csg.iter().fold(meshes, |b, c| b.union(c.bounds()))
+    }
+
+    /// The hit point and (unit, unoriented) geometric normal of a hit on a triangle or a CSG surface.
+    pub fn hit_geometry(&self, hit: &Hit, ray: &Ray) -> (Vec3, Vec3) {
+        if let Some((object, surface)) = hit.csg() {
+            let s = self.csg[object as usize].surface(surface, ray.at(hit.t));
+            return (s.p, s.n);
+        }
+        let [a, b, c] = self.world_triangle(hit.inst, hit.prim);
+        let p = a * (1.0 - hit.u - hit.v) + b * hit.u + c * hit.v;
+        (p, (b - a).cross(c - a).normalize_or_zero())
     }
 
     pub fn triangle_count(&self) -> usize {

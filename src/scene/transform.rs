@@ -1,13 +1,21 @@
-//! Transforms as scene files write them: translate, rotations in degrees, scale, or a whole matrix.
-//! Shared by assets, CSG nodes and anything else a scene file places.
+//! The transform of a scene-file element (`transform = { translate, rotate_x/y/z, scale }` or a
+//! `matrix`), shared by CSG nodes and the scene description's assets.
 
-use glam::{Mat4, Quat, Vec3};
+use glam::{Mat4, Vec3};
 use serde::Deserialize;
 
-/// `{ translate = [x,y,z], rotate_x/rotate_y/rotate_z = degrees, scale = s or [x,y,z] }` applied in the
-/// order scale, rotate x, y, z, translate; or `{ matrix = [16 numbers, column-major] }` alone.
+/// A scale: one factor, or one per axis.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
+#[serde(untagged)]
+pub enum Scale {
+    Uniform(f32),
+    PerAxis([f32; 3]),
+}
+
+/// An affine transform from a scene file. Applied in this order: scale, then rotate about x, y and z
+/// (degrees), then translate. `matrix` (16 numbers, column-major) excludes the others.
 #[derive(Clone, Debug, Default, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, try_from = "TransformFields")]
 pub struct TransformSpec {
     pub translate: Option<[f32; 3]>,
     pub rotate_x: Option<f32>,
@@ -17,53 +25,67 @@ pub struct TransformSpec {
     pub matrix: Option<[f32; 16]>,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
-#[serde(untagged)]
-pub enum Scale {
-    Uniform(f32),
-    Axes([f32; 3]),
+/// What the file may hold, before the exclusivity check.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TransformFields {
+    translate: Option<[f32; 3]>,
+    rotate_x: Option<f32>,
+    rotate_y: Option<f32>,
+    rotate_z: Option<f32>,
+    scale: Option<Scale>,
+    matrix: Option<[f32; 16]>,
+}
+
+impl TryFrom<TransformFields> for TransformSpec {
+    type Error = String;
+    fn try_from(f: TransformFields) -> Result<Self, String> {
+        let t = TransformSpec {
+            translate: f.translate,
+            rotate_x: f.rotate_x,
+            rotate_y: f.rotate_y,
+            rotate_z: f.rotate_z,
+            scale: f.scale,
+            matrix: f.matrix,
+        };
+        let parts = t.translate.is_some()
+            || t.rotate_x.is_some()
+            || t.rotate_y.is_some()
+            || t.rotate_z.is_some()
+            || t.scale.is_some();
+        if t.matrix.is_some() && parts {
+            return Err(
+                "transform: `matrix` cannot be combined with translate/rotate/scale".into(),
+            );
+        }
+        if !t.to_mat4().is_finite() {
+            return Err("transform: values must be finite".into());
+        }
+        Ok(t)
+    }
 }
 
 impl TransformSpec {
+    /// Why the transform cannot place anything (singular: a zero scale), if so.
+    pub fn problem(&self) -> Option<&'static str> {
+        (self.to_mat4().determinant().abs() < 1e-12).then_some("is singular (a zero scale?)")
+    }
+
     pub fn to_mat4(&self) -> Mat4 {
         if let Some(m) = self.matrix {
             return Mat4::from_cols_array(&m);
         }
-        let scale = match self.scale {
+        let s = match self.scale {
             None => Vec3::ONE,
-            Some(Scale::Uniform(s)) => Vec3::splat(s),
-            Some(Scale::Axes(a)) => Vec3::from(a),
+            Some(Scale::Uniform(k)) => Vec3::splat(k),
+            Some(Scale::PerAxis(v)) => Vec3::from_array(v),
         };
         let deg = |a: Option<f32>| a.unwrap_or(0.0).to_radians();
-        let rotation = Quat::from_rotation_z(deg(self.rotate_z))
-            * Quat::from_rotation_y(deg(self.rotate_y))
-            * Quat::from_rotation_x(deg(self.rotate_x));
-        Mat4::from_scale_rotation_translation(
-            scale,
-            rotation,
-            Vec3::from(self.translate.unwrap_or([0.0; 3])),
-        )
-    }
-
-    /// Why the transform cannot place anything (a matrix mixed with parts, or a singular or
-    /// non-finite result), if so.
-    pub fn problem(&self) -> Option<&'static str> {
-        let parts = self.translate.is_some()
-            || self.rotate_x.is_some()
-            || self.rotate_y.is_some()
-            || self.rotate_z.is_some()
-            || self.scale.is_some();
-        if self.matrix.is_some() && parts {
-            return Some("'matrix' cannot be combined with translate, rotate or scale");
-        }
-        let m = self.to_mat4();
-        if !m.is_finite() {
-            return Some("is not finite");
-        }
-        if m.determinant().abs() < 1e-12 {
-            return Some("is singular (a zero scale?)");
-        }
-        None
+        Mat4::from_translation(Vec3::from_array(self.translate.unwrap_or([0.0; 3])))
+            * Mat4::from_rotation_z(deg(self.rotate_z))
+            * Mat4::from_rotation_y(deg(self.rotate_y))
+            * Mat4::from_rotation_x(deg(self.rotate_x))
+            * Mat4::from_scale(s)
     }
 }
 
@@ -71,16 +93,36 @@ impl TransformSpec {
 mod tests {
     use super::*;
 
+    fn parse(s: &str) -> Result<TransformSpec, String> {
+        toml::from_str::<std::collections::BTreeMap<String, TransformSpec>>(s)
+            .map(|m| m["t"].clone())
+            .map_err(|e| e.to_string())
+    }
+
     #[test]
     fn order_is_scale_rotate_translate() {
-        let t: TransformSpec =
-            toml::from_str("translate = [1, 2, 3]\nrotate_y = 90\nscale = 2").unwrap();
+        let t = parse("t = { translate = [1, 2, 3], rotate_z = 90, scale = 2 }").unwrap();
         let p = t.to_mat4().transform_point3(Vec3::X);
-        // (1,0,0) scaled to (2,0,0), turned about y to (0,0,-2), moved by (1,2,3).
-        assert!((p - Vec3::new(1.0, 2.0, 1.0)).length() < 1e-5, "{p}");
-        assert!(t.problem().is_none());
-        let bad: TransformSpec = toml::from_str("scale = [1, 0, 1]").unwrap();
-        assert!(bad.problem().is_some());
-        assert!(toml::from_str::<TransformSpec>("rotate = 3").is_err());
+        // (1,0,0) -> scale (2,0,0) -> rotate z 90 (0,2,0) -> translate (1,4,3).
+        assert!((p - Vec3::new(1.0, 4.0, 3.0)).length() < 1e-5, "{p}");
+        let t = parse("t = { scale = [1, 2, 3] }").unwrap();
+        assert_eq!(
+            t.to_mat4().transform_vector3(Vec3::ONE),
+            Vec3::new(1.0, 2.0, 3.0)
+        );
+        let t = parse("t = { matrix = [1,0,0,0, 0,1,0,0, 0,0,1,0, 5,6,7,1] }").unwrap();
+        assert_eq!(
+            t.to_mat4().transform_point3(Vec3::ZERO),
+            Vec3::new(5.0, 6.0, 7.0)
+        );
+    }
+
+    #[test]
+    fn typos_and_mixtures_are_errors() {
+        let e = parse("t = { translat = [1, 2, 3] }").unwrap_err();
+        assert!(e.contains("translat"), "{e}");
+        let e =
+            parse("t = { matrix = [1,0,0,0, 0,1,0,0, 0,0,1,0, 5,6,7,1], scale = 2 }").unwrap_err();
+        assert!(e.contains("matrix"), "{e}");
     }
 }

@@ -359,7 +359,12 @@ impl LightSet {
     /// The solid-angle pdf with which `sample` would have chosen the point `q` (normal `nq`) on emissive
     /// triangle `(inst, prim)` from `p`: what multiple importance sampling needs for BSDF-sampled hits.
     pub fn pdf_triangle(&self, inst: u32, prim: u32, p: Vec3, q: Vec3, nq: Vec3) -> f32 {
-        let first = self.first_triangle[inst as usize];
+        // CSG surfaces (`Hit::csg`) and unlit instances are never sampled as lights.
+        let first = self
+            .first_triangle
+            .get(inst as usize)
+            .copied()
+            .unwrap_or(u32::MAX);
         if first == u32::MAX {
             return 0.0;
         }

@@ -1,0 +1,219 @@
+//! A closed triangle mesh as a CSG operand: the inside of the line is read from the parity of its
+//! crossings with the surface (sorted; the duplicate crossings of a ray through a shared edge merged),
+//! found with a small BVH over the mesh's triangles in its own space.
+
+use glam::Vec3;
+
+use crate::accel::triangle::{self, RayShear};
+use crate::geometry::Aabb;
+use crate::scene::Mesh;
+
+/// Most crossings of one line with one mesh that are kept; a list that would need more keeps the
+/// nearest and reports the rest as unknown (see `Intervals::limit`).
+pub const MAX_CROSSINGS: usize = 2 * super::CAPACITY;
+const LEAF_SIZE: usize = 4;
+
+/// A node: bounds and two children (`count == 0`, left at `index`) or `count` triangles from `index`.
+#[derive(Clone, Copy, Debug)]
+struct MNode {
+    bounds: Aabb,
+    index: u32,
+    count: u32,
+}
+
+/// A closed (every edge shared by exactly two triangles) triangle mesh in object space.
+#[derive(Debug)]
+pub struct SolidMesh {
+    pub name: String,
+    /// The triangles, reordered into the BVH's leaf order (surface ids name them by this order).
+    tris: Vec<[Vec3; 3]>,
+    nodes: Vec<MNode>,
+    bounds: Aabb,
+}
+
+/// Meshes are compared by identity (they are shared through `Arc`s).
+impl PartialEq for SolidMesh {
+    fn eq(&self, other: &Self) -> bool {
+        std::ptr::eq(self, other)
+    }
+}
+
+/// One crossing: distance, triangle and whether the triangle's normal faces against the line.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Crossing {
+    pub t: f32,
+    pub tri: u32,
+    pub facing: bool,
+}
+
+impl SolidMesh {
+    /// The solid bounded by `mesh`; fails when the mesh is not closed (its inside would be undefined).
+    pub fn new(mesh: &Mesh) -> Result<Self, String> {
+        let mut edges = std::collections::HashMap::<(u32, u32), u32>::new();
+        for t in &mesh.indices {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                *edges.entry((a.min(b), a.max(b))).or_default() += 1;
+            }
+        }
+        if mesh.indices.is_empty() || edges.values().any(|&n| n != 2) {
+            return Err(format!(
+                "mesh '{}' is not closed (every edge must join exactly two triangles) and cannot be a CSG operand",
+                mesh.name
+            ));
+        }
+        let mut tris: Vec<[Vec3; 3]> = (0..mesh.indices.len() as u32)
+            .map(|i| mesh.triangle(i))
+            .collect();
+        let mut nodes = vec![MNode {
+            bounds: Aabb::EMPTY,
+            index: 0,
+            count: 0,
+        }];
+        build(&mut tris, 0, 0, &mut nodes);
+        Ok(Self {
+            name: mesh.name.clone(),
+            bounds: nodes[0].bounds,
+            tris,
+            nodes,
+        })
+    }
+
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    pub fn triangle_count(&self) -> usize {
+        self.tris.len()
+    }
+
+    /// Unit normal of triangle `tri` (by its winding).
+    pub fn normal(&self, tri: u32) -> Vec3 {
+        let [a, b, c] = self
+            .tris
+            .get(tri as usize)
+            .copied()
+            .unwrap_or([Vec3::ZERO; 3]);
+        (b - a).cross(c - a).normalize_or(Vec3::Z)
+    }
+
+    /// `p` moved onto the plane of triangle `tri`.
+    pub fn project(&self, tri: u32, p: Vec3) -> Vec3 {
+        let Some(&[a, ..]) = self.tris.get(tri as usize) else {
+            return p;
+        };
+        let n = self.normal(tri);
+        p - n * n.dot(p - a)
+    }
+
+    /// Every crossing of the whole line `o + t d` with the surface, sorted, duplicates through shared
+    /// edges merged (same facing within `tol`); returns how many, and whether some were dropped.
+    pub fn crossings(
+        &self,
+        o: Vec3,
+        d: Vec3,
+        tol: impl Fn(f32) -> f32,
+        out: &mut [Crossing; MAX_CROSSINGS],
+    ) -> (usize, bool) {
+        let sh = RayShear::new(d);
+        let inv = d.recip();
+        let mut n = 0;
+        let mut overflow = false;
+        let mut stack = [0u32; 64];
+        let mut sp = 1;
+        while sp > 0 {
+            sp -= 1;
+            let node = self.nodes[stack[sp] as usize];
+            if !line_hits(&node.bounds, o, inv) {
+                continue;
+            }
+            if node.count == 0 {
+                stack[sp] = node.index;
+                stack[sp + 1] = node.index + 1;
+                sp += 2;
+                continue;
+            }
+            for i in node.index..node.index + node.count {
+                let [a, b, c] = self.tris[i as usize];
+                if let Some(h) =
+                    triangle::intersect(o, &sh, a, b, c, f32::NEG_INFINITY, f32::INFINITY)
+                {
+                    let facing = (b - a).cross(c - a).dot(d) < 0.0;
+                    if n < MAX_CROSSINGS {
+                        out[n] = Crossing {
+                            t: h.t,
+                            tri: i,
+                            facing,
+                        };
+                        n += 1;
+                    } else {
+                        overflow = true;
+                    }
+                }
+            }
+        }
+        let list = &mut out[..n];
+        list.sort_unstable_by(|x, y| x.t.total_cmp(&y.t));
+        // Merge a crossing into the previous one when it is the same crossing seen through a shared
+        // edge or vertex.
+        let mut m = 0;
+        for k in 0..n {
+            let c = list[k];
+            if m > 0 && list[m - 1].facing == c.facing && c.t - list[m - 1].t <= tol(c.t) {
+                continue;
+            }
+            list[m] = c;
+            m += 1;
+        }
+        (m, overflow)
+    }
+}
+
+/// Whether the whole line meets the box.
+fn line_hits(b: &Aabb, o: Vec3, inv: Vec3) -> bool {
+    let far_scale = 1.0 + 2.0 * crate::geometry::gamma(3);
+    let (mut t0, mut t1) = (f32::NEG_INFINITY, f32::INFINITY);
+    for a in 0..3 {
+        let (lo, hi) = ((b.min[a] - o[a]) * inv[a], (b.max[a] - o[a]) * inv[a]);
+        let (near, far) = if inv[a] < 0.0 { (hi, lo) } else { (lo, hi) };
+        let (near, far) = (near - near.abs() * (far_scale - 1.0), far * far_scale);
+        t0 = if near > t0 { near } else { t0 };
+        t1 = if far < t1 { far } else { t1 };
+    }
+    t0 <= t1
+}
+
+/// Median-split BVH over `tris[..]` (reordered in place), whose first triangle has index `base`.
+fn build(tris: &mut [[Vec3; 3]], base: u32, at: usize, nodes: &mut Vec<MNode>) {
+    let bounds = Aabb::from_points(tris.iter().flatten().copied());
+    if tris.len() <= LEAF_SIZE {
+        nodes[at] = MNode {
+            bounds,
+            index: base,
+            count: tris.len() as u32,
+        };
+        return;
+    }
+    let centre = |t: &[Vec3; 3]| (t[0] + t[1] + t[2]) / 3.0;
+    let axis = Aabb::from_points(tris.iter().map(centre))
+        .extent()
+        .max_position();
+    let mid = tris.len() / 2;
+    tris.select_nth_unstable_by(mid, |a, b| centre(a)[axis].total_cmp(&centre(b)[axis]));
+    let l = nodes.len();
+    let blank = MNode {
+        bounds: Aabb::EMPTY,
+        index: 0,
+        count: 0,
+    };
+    nodes.push(blank);
+    nodes.push(blank);
+    nodes[at] = MNode {
+        bounds,
+        index: l as u32,
+        count: 0,
+    };
+    let (left, right) = tris.split_at_mut(mid);
+    build(left, base, l, nodes);
+    build(right, base + mid as u32, l + 1, nodes);
+}
