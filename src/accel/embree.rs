@@ -49,7 +49,7 @@ fn rtc_ray(ray: &Ray, id: u32) -> sys::RTCRay {
         dir_x: ray.d.x,
         dir_y: ray.d.y,
         dir_z: ray.d.z,
-        time: 0.0,
+        time: ray.time,
         tfar: ray.t_max.next_down(),
         mask: u32::MAX,
         id,
@@ -168,6 +168,7 @@ unsafe extern "C" fn alpha_filter(args: *const sys::RTCFilterFunctionNArguments)
                     t_min: f(3),
                     t_max: f(8),
                     seed: 0,
+                    time: f(7),
                 }
             };
             if !scene.alpha_passes(inst, prim, u, v, &world) {

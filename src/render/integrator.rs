@@ -103,7 +103,9 @@ impl<'a> Integrator<'a> {
                             f32::INFINITY
                         };
                         rays += 1;
-                        let shadow = Ray::segment(origin, ls.wi, t_max).with_seed(seed);
+                        let shadow = Ray::segment(origin, ls.wi, t_max)
+                            .with_seed(seed)
+                            .with_time(ray.time);
                         if !self.accel.occluded(&shadow) {
                             let w = if ls.is_delta {
                                 1.0
@@ -129,7 +131,7 @@ impl<'a> Integrator<'a> {
             }
             beta *= s.f * (s.wi.dot(n).abs() / s.pdf);
             prev = Some((s.pdf, si.p));
-            ray = Ray::new(origin, s.wi).with_seed(seed);
+            ray = Ray::new(origin, s.wi).with_seed(seed).with_time(ray.time);
 
             if bounce + 1 >= ROULETTE_START {
                 let q = beta.max_element().min(0.95);

@@ -19,7 +19,8 @@ use gltf::json::Value;
 use gltf::mesh::Mode;
 
 use super::{
-    AlphaMode, Camera, Light, LoadError, Material, Mesh, Projection, Scene, TexRef, Texture, Wrap,
+    AlphaMode, Animation, Camera, Light, LoadError, Material, Mesh, Projection, Scene, TexRef,
+    Texture, Wrap,
 };
 
 /// Extensions glint understands well enough that a file may require them.
@@ -33,8 +34,9 @@ const SUPPORTED_REQUIRED: &[&str] = &[
 ];
 
 /// Loads a .gltf or .glb file. Never panics on malformed input: every problem is a `LoadError`.
-pub fn load(path: &Path) -> Result<Scene, LoadError> {
-    match catch_unwind(AssertUnwindSafe(|| load_inner(path))) {
+/// Loads a glTF file keeping its animation number `animation` (when it has animations).
+pub fn load(path: &Path, animation: usize) -> Result<Scene, LoadError> {
+    match catch_unwind(AssertUnwindSafe(|| load_inner(path, animation))) {
         Ok(r) => r,
         Err(_) => Err(LoadError::new(
             path,
@@ -43,7 +45,7 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
     }
 }
 
-fn load_inner(path: &Path) -> Result<Scene, LoadError> {
+fn load_inner(path: &Path, animation: usize) -> Result<Scene, LoadError> {
     let err = |m: String| LoadError::new(path, m);
     let bytes = std::fs::read(path).map_err(|e| err(format!("cannot read file: {e}")))?;
     let base = path.parent().unwrap_or_else(|| Path::new("."));
@@ -109,6 +111,7 @@ fn load_inner(path: &Path) -> Result<Scene, LoadError> {
         images: HashMap::new(),
         default_material: None,
         dropped: 0,
+        animation,
     }
     .run()
     .map_err(err)
@@ -583,6 +586,8 @@ struct Loader<'a> {
     images: HashMap<usize, Option<Rc<Pixels>>>,
     default_material: Option<u32>,
     dropped: usize,
+    /// Which animation to keep.
+    animation: usize,
 }
 
 impl Loader<'_> {
@@ -609,6 +614,15 @@ impl Loader<'_> {
 
         let nodes: Vec<gltf::Node> = doc.nodes().collect();
         let mut visited = vec![false; nodes.len()];
+        // The hierarchy as reached from the roots, for animation: parents, and what hangs from nodes.
+        let mut parent_of: Vec<Option<u32>> = vec![None; nodes.len()];
+        let mut inst_nodes: Vec<(u32, u32)> = Vec::new();
+        let mut cam_nodes: Vec<(usize, u32)> = Vec::new();
+        for &r in &roots {
+            if r < nodes.len() {
+                parent_of[r] = None;
+            }
+        }
         let mut cameras: Vec<(usize, Camera)> = Vec::new();
         let mut stack: Vec<(usize, Mat4)> =
             roots.iter().rev().map(|&r| (r, Mat4::IDENTITY)).collect();
@@ -624,6 +638,9 @@ impl Loader<'_> {
             let local = Mat4::from_cols_array_2d(&node.transform().matrix());
             let world = parent * local;
             for c in node.children().collect::<Vec<_>>().into_iter().rev() {
+                if !visited[c.index()] {
+                    parent_of[c.index()] = Some(ni as u32);
+                }
                 stack.push((c.index(), world));
             }
             let label = match node.name() {
@@ -644,6 +661,7 @@ impl Loader<'_> {
                 } else {
                     for prim in mesh.primitives() {
                         if let Some(m) = self.primitive(&mesh, &prim)? {
+                            inst_nodes.push((self.scene.instances.len() as u32, ni as u32));
                             self.scene.instances.push(super::Instance::new(m, world));
                         }
                     }
@@ -674,18 +692,59 @@ impl Loader<'_> {
                     .or(node.name())
                     .map(str::to_owned)
                     .unwrap_or_else(|| format!("camera {}", cam.index()));
+                cam_nodes.push((cam.index(), ni as u32));
                 cameras.push((
                     cam.index(),
                     Camera {
                         name,
                         to_world: Mat4::from_rotation_translation(rot, trans),
                         projection,
+                        lens: None,
+                        motion: None,
                     },
                 ));
             }
         }
         cameras.sort_by_key(|(i, _)| *i);
+        // Camera nodes by position in the sorted list.
+        let cam_nodes: Vec<(u32, u32)> = cameras
+            .iter()
+            .enumerate()
+            .filter_map(|(k, (ci, _))| {
+                cam_nodes
+                    .iter()
+                    .find(|(c, _)| c == ci)
+                    .map(|&(_, n)| (k as u32, n))
+            })
+            .collect();
         self.scene.cameras = cameras.into_iter().map(|(_, c)| c).collect();
+        if doc.animations().len() > 0 {
+            let Some(anim) = doc.animations().nth(self.animation) else {
+                return Err(format!(
+                    "no animation {} (the file has {})",
+                    self.animation,
+                    doc.animations().len()
+                ));
+            };
+            let mut a = self.animation(&anim)?;
+            a.nodes = nodes
+                .iter()
+                .map(|n| {
+                    let (t, r, s) = n.transform().decomposed();
+                    super::animation::Node {
+                        parent: parent_of[n.index()],
+                        translation: Vec3::from(t),
+                        rotation: Quat::from_array(r).normalize(),
+                        scale: Vec3::from(s),
+                    }
+                })
+                .collect();
+            a.instances = inst_nodes;
+            a.cameras = cam_nodes;
+            if !a.channels.is_empty() {
+                self.scene.animation = Some(a);
+            }
+        }
 
         if self.dropped > 0 {
             self.scene
@@ -703,6 +762,98 @@ impl Loader<'_> {
         stats.animations = doc.animations().len();
         self.scene.stats.triangles = self.scene.triangle_count();
         Ok(self.scene)
+    }
+
+    /// The channels of one animation on node translation, rotation and scale (morph weights are
+    /// skipped with a warning); the caller adds the node hierarchy.
+    fn animation(&mut self, anim: &gltf::Animation) -> Result<Animation, String> {
+        use super::animation::{Channel, Interpolation, Property};
+        let label = match anim.name() {
+            Some(n) => format!("animation {} ('{n}')", anim.index()),
+            None => format!("animation {}", anim.index()),
+        };
+        let mut out = Animation {
+            name: anim.name().unwrap_or("").to_owned(),
+            ..Default::default()
+        };
+        let mut weights = false;
+        for (ci, ch) in anim.channels().enumerate() {
+            let property = match ch.target().property() {
+                gltf::animation::Property::Translation => Property::Translation,
+                gltf::animation::Property::Rotation => Property::Rotation,
+                gltf::animation::Property::Scale => Property::Scale,
+                gltf::animation::Property::MorphTargetWeights => {
+                    weights = true;
+                    continue;
+                }
+            };
+            let at = |e: String| format!("{label}, channel {ci}: {e}");
+            let sampler = ch.sampler();
+            let interpolation = match sampler.interpolation() {
+                gltf::animation::Interpolation::Linear => Interpolation::Linear,
+                gltf::animation::Interpolation::Step => Interpolation::Step,
+                gltf::animation::Interpolation::CubicSpline => Interpolation::CubicSpline,
+            };
+            let input = sampler.input();
+            if input.dimensions() != Dimensions::Scalar || input.data_type() != DataType::F32 {
+                return Err(at(format!(
+                    "input accessor {} is not a float SCALAR",
+                    input.index()
+                )));
+            }
+            let times: Vec<f32> = read_elements(&input, self.buffers, |b| {
+                f32::from_le_bytes([b[0], b[1], b[2], b[3]])
+            })
+            .map_err(at)?;
+            if times.iter().any(|t| !t.is_finite()) || times.windows(2).any(|w| w[1] < w[0]) {
+                return Err(at("key times are not finite and increasing".into()));
+            }
+            let output = sampler.output();
+            let values: Vec<Vec4> = match property {
+                Property::Rotation => read_vec::<4>(&output, self.buffers, "rotation output")
+                    .map_err(at)?
+                    .into_iter()
+                    .map(Vec4::from)
+                    .collect(),
+                _ => read_vec::<3>(&output, self.buffers, "output")
+                    .map_err(at)?
+                    .into_iter()
+                    .map(|v| Vec3::from(v).extend(0.0))
+                    .collect(),
+            };
+            let per_key = if interpolation == Interpolation::CubicSpline {
+                3
+            } else {
+                1
+            };
+            if values.len() != per_key * times.len() {
+                return Err(at(format!(
+                    "{} output values for {} keys (expected {})",
+                    values.len(),
+                    times.len(),
+                    per_key * times.len()
+                )));
+            }
+            if values.iter().any(|v| !v.is_finite()) {
+                return Err(at("output values are not finite".into()));
+            }
+            if times.is_empty() {
+                continue;
+            }
+            out.channels.push(Channel {
+                node: ch.target().node().index() as u32,
+                property,
+                interpolation,
+                times,
+                values,
+            });
+        }
+        if weights {
+            self.scene.warnings.push(format!(
+                "{label}: morph-target weight channels are ignored (meshes keep their base shape)"
+            ));
+        }
+        Ok(out)
     }
 
     fn light(&mut self, light: &gltf::khr_lights_punctual::Light, world: Mat4, label: &str) {
