@@ -17,6 +17,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::flat::{flatten, TriId};
+use super::motion::MovingSet;
 use super::triangle::{self, RayShear};
 use super::Accel;
 use crate::geometry::{gamma, Aabb, Hit, Ray};
@@ -50,6 +51,8 @@ pub struct GridAccel {
     offsets: Vec<u32>,
     /// Triangle indices of every cell, ascending within a cell.
     refs: Vec<u32>,
+    /// Instances that move during the shutter (absent for static scenes).
+    moving: Option<Box<MovingSet>>,
 }
 
 impl GridAccel {
@@ -60,6 +63,15 @@ impl GridAccel {
     /// Builds with `lambda` cells per triangle (before clamping). 2 to 4 is the usual sweet spot:
     /// fewer cells hold more triangles each, more cells cost more steps and memory.
     pub fn build_with(scene: Arc<Scene>, lambda: f32) -> Self {
+        let moving = MovingSet::build(&scene).map(Box::new);
+        Self {
+            moving,
+            ..Self::build_static(scene, lambda)
+        }
+    }
+
+    /// The grid over the static instances' world-space triangles.
+    fn build_static(scene: Arc<Scene>, lambda: f32) -> Self {
         let (tris, ids) = flatten(&scene);
         let bounds = tris
             .par_iter()
@@ -78,6 +90,7 @@ impl GridAccel {
                 pad: 0.0,
                 offsets: vec![0, 0],
                 refs: Vec::new(),
+                moving: None,
             };
         }
         // Rounding of crossings and hit points is a few float spacings of the coordinates involved:
@@ -104,6 +117,7 @@ impl GridAccel {
             pad,
             offsets: Vec::new(),
             refs: Vec::new(),
+            moving: None,
         };
         grid.fill();
         grid
@@ -235,6 +249,7 @@ impl GridAccel {
             + self.ids.len() * std::mem::size_of::<TriId>()
             + self.offsets.len() * 4
             + self.refs.len() * 4
+            + self.moving.as_ref().map_or(0, |m| m.memory_bytes())
     }
 
     /// Ray parameter where the ray crosses boundary `k` of `axis` (computed the same way everywhere).
@@ -408,17 +423,29 @@ fn resolution(extent: Vec3, n: usize, lambda: f32) -> [u32; 3] {
     res
 }
 
+impl GridAccel {
+    /// The backend's answer: its own triangles, then the moving instances.
+    #[inline]
+    fn query(&self, ray: &Ray, any: bool) -> Option<Hit> {
+        let hit = self.traverse(ray, any);
+        match &self.moving {
+            None => hit,
+            Some(m) => m.intersect(&self.scene, ray, hit, any),
+        }
+    }
+}
+
 impl Accel for GridAccel {
     fn name(&self) -> &'static str {
         "grid"
     }
 
     fn intersect(&self, ray: &Ray) -> Option<Hit> {
-        self.traverse(ray, false)
+        self.query(ray, false)
     }
 
     fn occluded(&self, ray: &Ray) -> bool {
-        self.traverse(ray, true).is_some()
+        self.query(ray, true).is_some()
     }
 
     fn memory_bytes(&self) -> usize {

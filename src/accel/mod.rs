@@ -7,6 +7,7 @@ pub mod compare;
 pub mod embree;
 pub mod flat;
 pub mod grid;
+pub mod motion;
 #[cfg(feature = "obvhs")]
 pub mod obvhs;
 #[cfg(test)]
