@@ -101,6 +101,66 @@ pub struct Animation {
     pub instances: Vec<(u32, u32)>,
     /// (camera index, node index) of every camera.
     pub cameras: Vec<(u32, u32)>,
+    /// Skinned meshes, posed by `pose` from their joints' world transforms.
+    pub skins: Vec<Skin>,
+}
+
+/// A mesh deformed by a skeleton: vertex = sum of weight_k (joint_k world x inverse bind_k) x rest.
+/// The instance's own node transform is ignored, as glTF says for skinned meshes.
+#[derive(Clone, Debug)]
+pub struct Skin {
+    pub instance: u32,
+    pub mesh: u32,
+    /// Joint nodes, indexed by the vertices' joint numbers.
+    pub joints: Vec<u32>,
+    pub inverse_bind: Vec<Mat4>,
+    pub vertex_joints: Vec<[u16; 4]>,
+    pub vertex_weights: Vec<Vec4>,
+    /// The mesh as the file gives it (bind shape).
+    pub rest_positions: Vec<Vec3>,
+    pub rest_normals: Vec<Vec3>,
+}
+
+impl Skin {
+    /// Positions and normals posed at animation time `t`.
+    pub fn posed(&self, anim: &Animation, t: f32) -> (Vec<Vec3>, Vec<Vec3>) {
+        let mats: Vec<Mat4> = self
+            .joints
+            .iter()
+            .zip(&self.inverse_bind)
+            .map(|(&j, ib)| anim.world(j, t) * *ib)
+            .collect();
+        let mut pos = Vec::with_capacity(self.rest_positions.len());
+        let mut nrm = Vec::with_capacity(self.rest_positions.len());
+        for (k, (&p, &n)) in self
+            .rest_positions
+            .iter()
+            .zip(&self.rest_normals)
+            .enumerate()
+        {
+            let w = self.vertex_weights[k];
+            let total = w.x + w.y + w.z + w.w;
+            let m = if total > 0.0 {
+                let j = self.vertex_joints[k];
+                (mats[j[0] as usize] * w.x
+                    + mats[j[1] as usize] * w.y
+                    + mats[j[2] as usize] * w.z
+                    + mats[j[3] as usize] * w.w)
+                    * (1.0 / total)
+            } else {
+                Mat4::IDENTITY
+            };
+            pos.push(m.transform_point3(p));
+            let nm = glam::Mat3::from_mat4(m).inverse().transpose();
+            let n2 = (nm * n).normalize_or_zero();
+            nrm.push(if n2 == Vec3::ZERO || !n2.is_finite() {
+                n
+            } else {
+                n2
+            });
+        }
+        (pos, nrm)
+    }
 }
 
 impl Animation {
@@ -257,7 +317,7 @@ pub fn pose(scene: &mut Scene, frame_time: f32, shutter: [f32; 2]) {
     let t_of = |u: f32| frame_time + shutter[0] + u * (shutter[1] - shutter[0]);
     let open = shutter[1] > shutter[0];
     for &(i, node) in &anim.instances {
-        if !anim.moves(node) {
+        if !anim.moves(node) || anim.skins.iter().any(|s| s.instance == i) {
             continue;
         }
         let Some(inst) = scene.instances.get_mut(i as usize) else {
@@ -276,6 +336,21 @@ pub fn pose(scene: &mut Scene, frame_time: f32, shutter: [f32; 2]) {
                     .iter()
                     .all(|s| s.is_finite() && s.determinant() != 0.0)
             });
+        }
+    }
+    // Skins are posed once per frame, in the middle of the shutter (no per-vertex motion blur).
+    for skin in &anim.skins {
+        let (pos, nrm) = skin.posed(&anim, t_of(0.5));
+        if pos.iter().any(|p| !p.is_finite()) {
+            continue;
+        }
+        let mesh = &mut scene.meshes[skin.mesh as usize];
+        mesh.positions = pos;
+        mesh.normals = nrm;
+        // Tangents follow poorly under blending; the surface falls back to UV-derived ones.
+        mesh.tangents.clear();
+        if let Some(inst) = scene.instances.get_mut(skin.instance as usize) {
+            *inst = super::Instance::new(inst.mesh, Mat4::IDENTITY);
         }
     }
     let unit = Aabb {
@@ -393,5 +468,54 @@ mod tests {
             let p = rot.at(k as f32 / 49.0).transform_point3(Vec3::ONE);
             assert!(b.min.cmple(p).all() && p.cmple(b.max).all());
         }
+    }
+
+    #[test]
+    fn skins_blend_joint_transforms_by_weight() {
+        let node = |translation: Vec3| Node {
+            parent: None,
+            translation,
+            rotation: Quat::IDENTITY,
+            scale: Vec3::ONE,
+        };
+        // Joint 1 moves along +y from 0 to 2 over a second; joint 0 stays at the origin.
+        let anim = Animation {
+            nodes: vec![node(Vec3::ZERO), node(Vec3::ZERO)],
+            channels: vec![Channel {
+                node: 1,
+                property: Property::Translation,
+                interpolation: Interpolation::Linear,
+                times: vec![0.0, 1.0],
+                values: vec![Vec4::ZERO, Vec4::new(0.0, 2.0, 0.0, 0.0)],
+            }],
+            ..Default::default()
+        };
+        let skin = Skin {
+            instance: 0,
+            mesh: 0,
+            joints: vec![0, 1],
+            // Joint 1's bind pose is at x = 1: its inverse moves the vertex back before posing.
+            inverse_bind: vec![Mat4::IDENTITY, Mat4::from_translation(-Vec3::X)],
+            vertex_joints: vec![[0, 1, 0, 0], [1, 0, 0, 0]],
+            vertex_weights: vec![
+                Vec4::new(0.25, 0.75, 0.0, 0.0),
+                Vec4::new(1.0, 0.0, 0.0, 0.0),
+            ],
+            rest_positions: vec![Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 0.0)],
+            rest_normals: vec![Vec3::Z, Vec3::Z],
+        };
+        let (p, n) = skin.posed(&anim, 0.5);
+        // 0.25 * (1, 0, 0) + 0.75 * ((1, 0, 0) - (1, 0, 0) + (0, 1, 0)).
+        assert!(
+            (p[0] - Vec3::new(0.25, 0.75, 0.0)).length() < 1e-6,
+            "{}",
+            p[0]
+        );
+        assert!(
+            (p[1] - Vec3::new(0.0, 2.0, 0.0)).length() < 1e-6,
+            "{}",
+            p[1]
+        );
+        assert_eq!(n[0], Vec3::Z);
     }
 }

@@ -18,6 +18,7 @@ use gltf::accessor::{DataType, Dimensions};
 use gltf::json::Value;
 use gltf::mesh::Mode;
 
+use super::animation::Skin;
 use super::{
     AlphaMode, Animation, Camera, Light, LoadError, Material, Mesh, Projection, Scene, TexRef,
     Texture, Wrap,
@@ -112,6 +113,8 @@ fn load_inner(path: &Path, animation: usize) -> Result<Scene, LoadError> {
         default_material: None,
         dropped: 0,
         animation,
+        pending_skin: None,
+        skin_attrs: HashMap::new(),
     }
     .run()
     .map_err(err)
@@ -588,6 +591,10 @@ struct Loader<'a> {
     dropped: usize,
     /// Which animation to keep.
     animation: usize,
+    /// Per-vertex joints and weights of the last primitive built, when skinned.
+    pending_skin: Option<(Vec<[u16; 4]>, Vec<Vec4>)>,
+    /// Joints and weights of skinned scene meshes, by mesh index.
+    skin_attrs: HashMap<u32, (Vec<[u16; 4]>, Vec<Vec4>)>,
 }
 
 impl Loader<'_> {
@@ -618,6 +625,8 @@ impl Loader<'_> {
         let mut parent_of: Vec<Option<u32>> = vec![None; nodes.len()];
         let mut inst_nodes: Vec<(u32, u32)> = Vec::new();
         let mut cam_nodes: Vec<(usize, u32)> = Vec::new();
+        // (instance, scene mesh, glTF skin) of every skinned primitive placed.
+        let mut skinned: Vec<(u32, u32, usize)> = Vec::new();
         for &r in &roots {
             if r < nodes.len() {
                 parent_of[r] = None;
@@ -661,6 +670,9 @@ impl Loader<'_> {
                 } else {
                     for prim in mesh.primitives() {
                         if let Some(m) = self.primitive(&mesh, &prim)? {
+                            if let Some(skin) = node.skin() {
+                                skinned.push((self.scene.instances.len() as u32, m, skin.index()));
+                            }
                             inst_nodes.push((self.scene.instances.len() as u32, ni as u32));
                             self.scene.instances.push(super::Instance::new(m, world));
                         }
@@ -718,15 +730,20 @@ impl Loader<'_> {
             })
             .collect();
         self.scene.cameras = cameras.into_iter().map(|(_, c)| c).collect();
-        if doc.animations().len() > 0 {
-            let Some(anim) = doc.animations().nth(self.animation) else {
-                return Err(format!(
-                    "no animation {} (the file has {})",
-                    self.animation,
-                    doc.animations().len()
-                ));
+        let skins = self.skins(&skinned)?;
+        if doc.animations().len() > 0 || !skins.is_empty() {
+            let mut a = match doc.animations().nth(self.animation) {
+                Some(anim) => self.animation(&anim)?,
+                None if doc.animations().len() == 0 => Animation::default(),
+                None => {
+                    return Err(format!(
+                        "no animation {} (the file has {})",
+                        self.animation,
+                        doc.animations().len()
+                    ))
+                }
             };
-            let mut a = self.animation(&anim)?;
+            a.skins = skins;
             a.nodes = nodes
                 .iter()
                 .map(|n| {
@@ -741,7 +758,7 @@ impl Loader<'_> {
                 .collect();
             a.instances = inst_nodes;
             a.cameras = cam_nodes;
-            if !a.channels.is_empty() {
+            if !a.channels.is_empty() || !a.skins.is_empty() {
                 self.scene.animation = Some(a);
             }
         }
@@ -762,6 +779,79 @@ impl Loader<'_> {
         stats.animations = doc.animations().len();
         self.scene.stats.triangles = self.scene.triangle_count();
         Ok(self.scene)
+    }
+
+    /// Skins of the skinned instances: joints, inverse bind matrices, and the mesh's rest shape with
+    /// its per-vertex joints and weights. A mesh skinned by two nodes is posed for the first only.
+    fn skins(&mut self, skinned: &[(u32, u32, usize)]) -> Result<Vec<Skin>, String> {
+        let mut out: Vec<Skin> = Vec::new();
+        for &(instance, mesh, skin_index) in skinned {
+            let Some((joints_v, weights)) = self.skin_attrs.get(&mesh) else {
+                self.scene.warnings.push(format!(
+                    "mesh {mesh}: node has a skin but the primitive has no JOINTS_0/WEIGHTS_0; drawn unskinned"
+                ));
+                continue;
+            };
+            if out.iter().any(|s| s.mesh == mesh) {
+                self.scene.warnings.push(format!(
+                    "mesh {mesh} is skinned by several nodes; posed for the first only"
+                ));
+                continue;
+            }
+            let skin = self
+                .doc
+                .skins()
+                .nth(skin_index)
+                .ok_or("skin out of range")?;
+            let label = format!("skin {skin_index}");
+            let joints: Vec<u32> = skin.joints().map(|n| n.index() as u32).collect();
+            let inverse_bind: Vec<Mat4> = match skin.inverse_bind_matrices() {
+                Some(acc) => {
+                    if acc.dimensions() != Dimensions::Mat4 || acc.data_type() != DataType::F32 {
+                        return Err(format!(
+                            "{label}: inverse bind matrices accessor {} is not a float MAT4",
+                            acc.index()
+                        ));
+                    }
+                    read_elements(&acc, self.buffers, |b| {
+                        Mat4::from_cols_array(&std::array::from_fn(|k| {
+                            f32::from_le_bytes([b[4 * k], b[4 * k + 1], b[4 * k + 2], b[4 * k + 3]])
+                        }))
+                    })
+                    .map_err(|e| format!("{label}: {e}"))?
+                }
+                None => vec![Mat4::IDENTITY; joints.len()],
+            };
+            if inverse_bind.len() < joints.len() {
+                return Err(format!(
+                    "{label}: {} inverse bind matrices for {} joints",
+                    inverse_bind.len(),
+                    joints.len()
+                ));
+            }
+            if let Some(bad) = joints_v
+                .iter()
+                .flatten()
+                .find(|&&j| j as usize >= joints.len())
+            {
+                return Err(format!(
+                    "mesh {mesh}: JOINTS_0 names joint {bad} but {label} has {}",
+                    joints.len()
+                ));
+            }
+            let m = &self.scene.meshes[mesh as usize];
+            out.push(Skin {
+                instance,
+                mesh,
+                joints,
+                inverse_bind,
+                vertex_joints: joints_v.clone(),
+                vertex_weights: weights.clone(),
+                rest_positions: m.positions.clone(),
+                rest_normals: m.normals.clone(),
+            });
+        }
+        Ok(out)
     }
 
     /// The channels of one animation on node translation, rotation and scale (morph weights are
@@ -1080,7 +1170,11 @@ impl Loader<'_> {
         let out = match built {
             Some(m) => {
                 self.scene.meshes.push(m);
-                Some((self.scene.meshes.len() - 1) as u32)
+                let index = (self.scene.meshes.len() - 1) as u32;
+                if let Some(attrs) = self.pending_skin.take() {
+                    self.skin_attrs.insert(index, attrs);
+                }
+                Some(index)
             }
             None => None,
         };
@@ -1190,7 +1284,26 @@ impl Loader<'_> {
             indices,
             material,
         };
-        self.dropped += clean_mesh(&mut m);
+        let (dropped, kept) = clean_mesh_order(&mut m);
+        self.dropped += dropped;
+        self.pending_skin = None;
+        if let (Some(j), Some(w)) = (
+            prim.get(&gltf::Semantic::Joints(0)),
+            prim.get(&gltf::Semantic::Weights(0)),
+        ) {
+            let joints = read_vec::<4>(&j, self.buffers, "JOINTS_0")?;
+            let weights = read_vec::<4>(&w, self.buffers, "WEIGHTS_0")?;
+            check_len("JOINTS_0", joints.len())?;
+            check_len("WEIGHTS_0", weights.len())?;
+            let pick = |k: usize| kept.as_ref().map_or(k, |o| o[k]);
+            let joints: Vec<[u16; 4]> = (0..m.positions.len())
+                .map(|k| joints[pick(k)].map(|x| x.clamp(0.0, u16::MAX as f32) as u16))
+                .collect();
+            let weights: Vec<Vec4> = (0..m.positions.len())
+                .map(|k| Vec4::from(weights[pick(k)]))
+                .collect();
+            self.pending_skin = Some((joints, weights));
+        }
         if m.indices.is_empty() {
             self.scene
                 .warnings
@@ -1206,6 +1319,13 @@ impl Loader<'_> {
 /// attributes, and computes area-weighted normals where the file has none (or unusable ones).
 /// Returns the number of triangles dropped.
 pub(crate) fn clean_mesh(m: &mut Mesh) -> usize {
+    clean_mesh_order(m).0
+}
+
+/// `clean_mesh`, also returning which original vertex each kept vertex is (None when all are kept in
+/// place), so that attributes the mesh does not hold (skin weights) can follow.
+fn clean_mesh_order(m: &mut Mesh) -> (usize, Option<Vec<usize>>) {
+    let mut kept = None;
     let before = m.indices.len();
     let nv = m.positions.len();
     let pos = &m.positions;
@@ -1261,6 +1381,7 @@ pub(crate) fn clean_mesh(m: &mut Mesh) -> usize {
                 *k = remap[*k as usize];
             }
         }
+        kept = Some(order);
     }
 
     let n = m.positions.len();
@@ -1307,7 +1428,7 @@ pub(crate) fn clean_mesh(m: &mut Mesh) -> usize {
             }
         }
     }
-    dropped
+    (dropped, kept)
 }
 
 #[cfg(test)]
