@@ -149,7 +149,7 @@ fn moving_square(side: f32, depth: f32, speed: f32, shutter: f32) -> Scene {
             ],
         }],
         instances: vec![(0, 0)],
-        cameras: vec![],
+        ..Default::default()
     });
     animation::pose(&mut scene, 0.5, [0.0, shutter]);
     scene

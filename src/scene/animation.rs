@@ -364,10 +364,13 @@ pub fn pose(scene: &mut Scene, frame_time: f32, shutter: [f32; 2]) {
         let Some(cam) = scene.cameras.get_mut(i as usize) else {
             continue;
         };
-        let world = |u: f32| rigid(anim.world(node, t_of(u)));
-        cam.to_world = world(0.0);
+        cam.to_world = rigid(anim.world(node, t_of(0.0)));
         if open {
-            cam.motion = Motion::sample(world, &unit, MOTION_TOLERANCE);
+            cam.motion = Motion::sample(
+                |u| rigid(anim.world(node, t_of(u))),
+                &unit,
+                MOTION_TOLERANCE,
+            );
         }
     }
     scene.animation = Some(anim);

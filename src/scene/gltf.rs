@@ -627,11 +627,6 @@ impl Loader<'_> {
         let mut cam_nodes: Vec<(usize, u32)> = Vec::new();
         // (instance, scene mesh, glTF skin) of every skinned primitive placed.
         let mut skinned: Vec<(u32, u32, usize)> = Vec::new();
-        for &r in &roots {
-            if r < nodes.len() {
-                parent_of[r] = None;
-            }
-        }
         let mut cameras: Vec<(usize, Camera)> = Vec::new();
         let mut stack: Vec<(usize, Mat4)> =
             roots.iter().rev().map(|&r| (r, Mat4::IDENTITY)).collect();
