@@ -182,6 +182,36 @@ fn motion_blur_streak_is_speed_times_shutter() {
 }
 
 #[test]
+fn a_moving_camera_streaks_a_still_object() {
+    let (side, depth, shift) = (0.1f32, 3.0f32, 0.2f32);
+    let (mesh, material) = emissive_square(side);
+    let scene = Arc::new(Scene {
+        meshes: vec![mesh],
+        instances: vec![Instance::new(0, Mat4::from_translation(-Vec3::Z * depth))],
+        materials: vec![material],
+        ..Default::default()
+    });
+    assert!(!scene.has_motion());
+    let mut cam = camera();
+    cam.motion = Some(glint::scene::Motion {
+        steps: vec![
+            cam.to_world,
+            Mat4::from_translation(Vec3::X * shift) * cam.to_world,
+        ],
+    });
+    let img = common::render_with(&scene, &cam, Backend::Bvh, &settings(64));
+    let (mx, _, vx, _) = moments(&img);
+    let ppt = pixels_per_tan();
+    let streak = shift / depth * ppt;
+    let square = side / depth * ppt;
+    let measured = (12.0 * (vx - (square * square + 1.0) as f64 / 12.0)).sqrt();
+    eprintln!("camera streak {streak:.3} px, measured {measured:.3} px");
+    assert!((measured - streak as f64).abs() < 0.02 * streak as f64);
+    // The camera moves right, so the square slides left from the centre.
+    assert!((mx - (48.0 - 0.5 * streak) as f64).abs() < 0.1, "{mx}");
+}
+
+#[test]
 fn backends_agree_on_a_moving_scene() {
     let scene = Arc::new(moving_square(0.3, 3.0, 2.0, 0.1));
     let reference = common::render_with(&scene, &camera(), Backend::Bvh, &settings(8));
