@@ -100,16 +100,24 @@ impl MovingSet {
     }
 }
 
-/// Whether the ray's segment `(t_min, t_max)` touches the box (conservative slab test).
+/// Whether the ray's segment `(t_min, t_max)` touches the box (conservative slab test; an axis the
+/// ray runs parallel to only checks that the origin is within the slab).
 fn hits_box(b: &Aabb, ray: &Ray, t_max: f32) -> bool {
-    let inv = ray.d.recip();
-    let t0 = (b.min - ray.o) * inv;
-    let t1 = (b.max - ray.o) * inv;
-    let near = t0.min(t1);
-    let far = t0.max(t1) * (1.0 + 2.0 * gamma(3));
-    // NaN components (0 * inf) are skipped by max/min_element's comparisons.
-    let enter = near.max_element().max(ray.t_min);
-    let exit = far.min_element().min(t_max);
+    let (mut enter, mut exit) = (ray.t_min, t_max);
+    for axis in 0..3 {
+        let (o, d) = (ray.o[axis], ray.d[axis]);
+        if d == 0.0 {
+            if o < b.min[axis] || o > b.max[axis] {
+                return false;
+            }
+            continue;
+        }
+        let inv = 1.0 / d;
+        let (t0, t1) = ((b.min[axis] - o) * inv, (b.max[axis] - o) * inv);
+        let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
+        enter = enter.max(near);
+        exit = exit.min(far * (1.0 + 2.0 * gamma(3)));
+    }
     enter <= exit
 }
 
@@ -146,5 +154,34 @@ mod tests {
             }
             assert_eq!(set.intersect(&scene, &ray, None, true).is_some(), hit);
         }
+    }
+
+    #[test]
+    fn box_test_keeps_rays_along_a_face() {
+        let b = Aabb {
+            min: Vec3::ZERO,
+            max: Vec3::ONE,
+        };
+        // Parallel to x and z, exactly on the y = 0 face: inside the slab, so kept.
+        assert!(hits_box(
+            &b,
+            &Ray::new(Vec3::new(-1.0, 0.0, 0.5), Vec3::X),
+            f32::INFINITY
+        ));
+        assert!(!hits_box(
+            &b,
+            &Ray::new(Vec3::new(-1.0, -0.01, 0.5), Vec3::X),
+            f32::INFINITY
+        ));
+        assert!(!hits_box(
+            &b,
+            &Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::X),
+            0.5
+        ));
+        assert!(hits_box(
+            &b,
+            &Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::X),
+            1.5
+        ));
     }
 }
