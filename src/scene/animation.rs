@@ -36,48 +36,151 @@ pub struct Channel {
 impl Channel {
     /// The channel's value at time `t` (clamped to the first and last keys, as glTF says).
     pub fn sample(&self, t: f32) -> Vec4 {
-        let n = self.times.len();
-        let key = |i: usize| match self.interpolation {
-            Interpolation::CubicSpline => self.values[3 * i + 1],
-            _ => self.values[i],
-        };
-        if n == 0 {
-            return Vec4::ZERO;
-        }
-        if n == 1 || t <= self.times[0] || t.is_nan() {
-            return key(0);
-        }
-        if t >= self.times[n - 1] {
-            return key(n - 1);
-        }
-        // The last key at or before t.
-        let k = self.times.partition_point(|&x| x <= t) - 1;
-        let (t0, t1) = (self.times[k], self.times[k + 1]);
-        let dt = t1 - t0;
-        let s = if dt > 0.0 { (t - t0) / dt } else { 0.0 };
         let rotation = self.property == Property::Rotation;
-        let v = match self.interpolation {
-            Interpolation::Step => key(k),
-            Interpolation::Linear if rotation => {
-                let (a, b) = (Quat::from_vec4(key(k)), Quat::from_vec4(key(k + 1)));
-                Vec4::from(a.normalize().slerp(b.normalize(), s))
-            }
-            Interpolation::Linear => key(k).lerp(key(k + 1), s),
-            Interpolation::CubicSpline => {
-                let (s2, s3) = (s * s, s * s * s);
-                let out_k = self.values[3 * k + 2];
-                let in_k1 = self.values[3 * (k + 1)];
-                key(k) * (2.0 * s3 - 3.0 * s2 + 1.0)
-                    + out_k * (dt * (s3 - 2.0 * s2 + s))
-                    + key(k + 1) * (-2.0 * s3 + 3.0 * s2)
-                    + in_k1 * (dt * (s3 - s2))
-            }
-        };
+        let v = interpolate(
+            &self.times,
+            self.interpolation,
+            t,
+            |k, part| self.values[k * self.interpolation.per_key() + part],
+            |a: Vec4, b: Vec4, s| {
+                if rotation {
+                    Vec4::from(
+                        Quat::from_vec4(a)
+                            .normalize()
+                            .slerp(Quat::from_vec4(b).normalize(), s),
+                    )
+                } else {
+                    a.lerp(b, s)
+                }
+            },
+        );
         if rotation {
             Vec4::from(Quat::from_vec4(v).normalize())
         } else {
             v
         }
+    }
+}
+
+impl Interpolation {
+    /// Output elements per key: (in-tangent, value, out-tangent) for cubic splines.
+    pub fn per_key(self) -> usize {
+        match self {
+            Interpolation::CubicSpline => 3,
+            _ => 1,
+        }
+    }
+}
+
+/// The glTF sampler formulas over keys at `times`: `part(k, p)` is element `p` of key `k` (0 for
+/// step and linear; 0 in-tangent, 1 value, 2 out-tangent for cubic splines). Clamped outside the keys.
+fn interpolate<T>(
+    times: &[f32],
+    interpolation: Interpolation,
+    t: f32,
+    part: impl Fn(usize, usize) -> T,
+    lerp: impl Fn(T, T, f32) -> T,
+) -> T
+where
+    T: Copy + std::ops::Add<Output = T> + std::ops::Mul<f32, Output = T>,
+{
+    let n = times.len();
+    let value = if interpolation == Interpolation::CubicSpline {
+        1
+    } else {
+        0
+    };
+    let key = |k: usize| part(k, value);
+    if n <= 1 || t <= times[0] || t.is_nan() {
+        return key(0);
+    }
+    if t >= times[n - 1] {
+        return key(n - 1);
+    }
+    // The last key at or before t.
+    let k = times.partition_point(|&x| x <= t) - 1;
+    let dt = times[k + 1] - times[k];
+    let s = if dt > 0.0 { (t - times[k]) / dt } else { 0.0 };
+    match interpolation {
+        Interpolation::Step => key(k),
+        Interpolation::Linear => lerp(key(k), key(k + 1), s),
+        Interpolation::CubicSpline => {
+            let (s2, s3) = (s * s, s * s * s);
+            key(k) * (2.0 * s3 - 3.0 * s2 + 1.0)
+                + part(k, 2) * (dt * (s3 - 2.0 * s2 + s))
+                + key(k + 1) * (-2.0 * s3 + 3.0 * s2)
+                + part(k + 1, 0) * (dt * (s3 - s2))
+        }
+    }
+}
+
+/// Morph-target weights of one node over time: `width` weights per key element.
+#[derive(Clone, Debug)]
+pub struct WeightChannel {
+    pub node: u32,
+    pub interpolation: Interpolation,
+    pub times: Vec<f32>,
+    pub width: usize,
+    pub values: Vec<f32>,
+}
+
+impl WeightChannel {
+    pub fn sample(&self, t: f32) -> Vec<f32> {
+        let per = self.interpolation.per_key();
+        (0..self.width)
+            .map(|i| {
+                interpolate(
+                    &self.times,
+                    self.interpolation,
+                    t,
+                    |k, part| self.values[(k * per + part) * self.width + i],
+                    |a: f32, b: f32, s| a + (b - a) * s,
+                )
+            })
+            .collect()
+    }
+}
+
+/// A mesh with morph targets: rest shape plus the weighted sum of the targets' displacements.
+#[derive(Clone, Debug)]
+pub struct Morph {
+    pub mesh: u32,
+    /// The node whose weights drive it (animated through `Animation::weights`).
+    pub node: u32,
+    /// Weights when no channel animates them (the node's, else the mesh's, else zero).
+    pub default_weights: Vec<f32>,
+    /// Per target: position and normal displacements (normals empty when the file has none).
+    pub targets: Vec<(Vec<Vec3>, Vec<Vec3>)>,
+    pub rest_positions: Vec<Vec3>,
+    pub rest_normals: Vec<Vec3>,
+}
+
+impl Morph {
+    /// Positions and normals with the weights at animation time `t`.
+    pub fn posed(&self, anim: &Animation, t: f32) -> (Vec<Vec3>, Vec<Vec3>) {
+        let weights = anim
+            .weights
+            .iter()
+            .find(|w| w.node == self.node)
+            .map_or_else(|| self.default_weights.clone(), |w| w.sample(t));
+        let mut pos = self.rest_positions.clone();
+        let mut nrm = self.rest_normals.clone();
+        for ((dp, dn), &w) in self.targets.iter().zip(&weights) {
+            if w == 0.0 {
+                continue;
+            }
+            for (p, d) in pos.iter_mut().zip(dp) {
+                *p += *d * w;
+            }
+            for (n, d) in nrm.iter_mut().zip(dn) {
+                *n += *d * w;
+            }
+        }
+        for (n, r) in nrm.iter_mut().zip(&self.rest_normals) {
+            let u = n.normalize_or_zero();
+            *n = if u == Vec3::ZERO { *r } else { u };
+        }
+        (pos, nrm)
     }
 }
 
@@ -103,6 +206,10 @@ pub struct Animation {
     pub cameras: Vec<(u32, u32)>,
     /// Skinned meshes, posed by `pose` from their joints' world transforms.
     pub skins: Vec<Skin>,
+    /// Morph-target weight channels.
+    pub weights: Vec<WeightChannel>,
+    /// Meshes with morph targets, posed by `pose` (before skinning).
+    pub morphs: Vec<Morph>,
 }
 
 /// A mesh deformed by a skeleton: vertex = sum of weight_k (joint_k world x inverse bind_k) x rest.
@@ -122,22 +229,23 @@ pub struct Skin {
 }
 
 impl Skin {
-    /// Positions and normals posed at animation time `t`.
-    pub fn posed(&self, anim: &Animation, t: f32) -> (Vec<Vec3>, Vec<Vec3>) {
+    /// Positions and normals posed at animation time `t`, from the rest shape `rest` (positions,
+    /// normals: the file's, or morphed).
+    pub fn posed(
+        &self,
+        anim: &Animation,
+        t: f32,
+        rest: (&[Vec3], &[Vec3]),
+    ) -> (Vec<Vec3>, Vec<Vec3>) {
         let mats: Vec<Mat4> = self
             .joints
             .iter()
             .zip(&self.inverse_bind)
             .map(|(&j, ib)| anim.world(j, t) * *ib)
             .collect();
-        let mut pos = Vec::with_capacity(self.rest_positions.len());
-        let mut nrm = Vec::with_capacity(self.rest_positions.len());
-        for (k, (&p, &n)) in self
-            .rest_positions
-            .iter()
-            .zip(&self.rest_normals)
-            .enumerate()
-        {
+        let mut pos = Vec::with_capacity(rest.0.len());
+        let mut nrm = Vec::with_capacity(rest.0.len());
+        for (k, (&p, &n)) in rest.0.iter().zip(rest.1).enumerate() {
             let w = self.vertex_weights[k];
             let total = w.x + w.y + w.z + w.w;
             let m = if total > 0.0 {
@@ -338,20 +446,39 @@ pub fn pose(scene: &mut Scene, frame_time: f32, shutter: [f32; 2]) {
             });
         }
     }
-    // Skins are posed once per frame, in the middle of the shutter (no per-vertex motion blur).
+    // Morphs, then skins, are posed once per frame, in the middle of the shutter (no per-vertex
+    // motion blur).
+    let t_mid = t_of(0.5);
+    let mut deformed: Vec<(u32, Vec<Vec3>, Vec<Vec3>)> = anim
+        .morphs
+        .iter()
+        .map(|m| {
+            let (p, n) = m.posed(&anim, t_mid);
+            (m.mesh, p, n)
+        })
+        .collect();
     for skin in &anim.skins {
-        let (pos, nrm) = skin.posed(&anim, t_of(0.5));
+        let (pos, nrm) = match deformed.iter().position(|d| d.0 == skin.mesh) {
+            Some(i) => {
+                let (_, p, n) = deformed.swap_remove(i);
+                skin.posed(&anim, t_mid, (&p, &n))
+            }
+            None => skin.posed(&anim, t_mid, (&skin.rest_positions, &skin.rest_normals)),
+        };
+        deformed.push((skin.mesh, pos, nrm));
+        if let Some(inst) = scene.instances.get_mut(skin.instance as usize) {
+            *inst = super::Instance::new(inst.mesh, Mat4::IDENTITY);
+        }
+    }
+    for (mesh, pos, nrm) in deformed {
         if pos.iter().any(|p| !p.is_finite()) {
             continue;
         }
-        let mesh = &mut scene.meshes[skin.mesh as usize];
+        let mesh = &mut scene.meshes[mesh as usize];
         mesh.positions = pos;
         mesh.normals = nrm;
         // Tangents follow poorly under blending; the surface falls back to UV-derived ones.
         mesh.tangents.clear();
-        if let Some(inst) = scene.instances.get_mut(skin.instance as usize) {
-            *inst = super::Instance::new(inst.mesh, Mat4::IDENTITY);
-        }
     }
     let unit = Aabb {
         min: Vec3::splat(-1.0),
@@ -507,7 +634,7 @@ mod tests {
             rest_positions: vec![Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 0.0)],
             rest_normals: vec![Vec3::Z, Vec3::Z],
         };
-        let (p, n) = skin.posed(&anim, 0.5);
+        let (p, n) = skin.posed(&anim, 0.5, (&skin.rest_positions, &skin.rest_normals));
         // 0.25 * (1, 0, 0) + 0.75 * ((1, 0, 0) - (1, 0, 0) + (0, 1, 0)).
         assert!(
             (p[0] - Vec3::new(0.25, 0.75, 0.0)).length() < 1e-6,

@@ -18,7 +18,7 @@ use gltf::accessor::{DataType, Dimensions};
 use gltf::json::Value;
 use gltf::mesh::Mode;
 
-use super::animation::Skin;
+use super::animation::{Channel, Interpolation, Morph, Property, Skin, WeightChannel};
 use super::{
     AlphaMode, Animation, Camera, Light, LoadError, Material, Mesh, Projection, Scene, TexRef,
     Texture, Wrap,
@@ -115,9 +115,22 @@ fn load_inner(path: &Path, animation: usize) -> Result<Scene, LoadError> {
         animation,
         pending_skin: None,
         skin_attrs: HashMap::new(),
+        pending_morph: None,
+        morph_attrs: HashMap::new(),
     }
     .run()
     .map_err(err)
+}
+
+/// One morph target's position and normal displacements.
+type MorphTarget = (Vec<Vec3>, Vec<Vec3>);
+
+fn interpolation_of(i: gltf::animation::Interpolation) -> Interpolation {
+    match i {
+        gltf::animation::Interpolation::Linear => Interpolation::Linear,
+        gltf::animation::Interpolation::Step => Interpolation::Step,
+        gltf::animation::Interpolation::CubicSpline => Interpolation::CubicSpline,
+    }
 }
 
 /// Splits a binary glTF into its JSON chunk and BIN chunk, checking every length.
@@ -595,6 +608,10 @@ struct Loader<'a> {
     pending_skin: Option<(Vec<[u16; 4]>, Vec<Vec4>)>,
     /// Joints and weights of skinned scene meshes, by mesh index.
     skin_attrs: HashMap<u32, (Vec<[u16; 4]>, Vec<Vec4>)>,
+    /// Morph targets (position and normal displacements) of the last primitive built.
+    pending_morph: Option<Vec<MorphTarget>>,
+    /// Morph targets of scene meshes, by mesh index.
+    morph_attrs: HashMap<u32, Vec<MorphTarget>>,
 }
 
 impl Loader<'_> {
@@ -627,6 +644,8 @@ impl Loader<'_> {
         let mut cam_nodes: Vec<(usize, u32)> = Vec::new();
         // (instance, scene mesh, glTF skin) of every skinned primitive placed.
         let mut skinned: Vec<(u32, u32, usize)> = Vec::new();
+        // (scene mesh, node, default weights) of every primitive with morph targets placed.
+        let mut morphed: Vec<(u32, u32, Vec<f32>)> = Vec::new();
         let mut cameras: Vec<(usize, Camera)> = Vec::new();
         let mut stack: Vec<(usize, Mat4)> =
             roots.iter().rev().map(|&r| (r, Mat4::IDENTITY)).collect();
@@ -665,6 +684,14 @@ impl Loader<'_> {
                 } else {
                     for prim in mesh.primitives() {
                         if let Some(m) = self.primitive(&mesh, &prim)? {
+                            if self.morph_attrs.contains_key(&m) {
+                                let weights = node
+                                    .weights()
+                                    .or(mesh.weights())
+                                    .map(<[f32]>::to_vec)
+                                    .unwrap_or_default();
+                                morphed.push((m, ni as u32, weights));
+                            }
                             if let Some(skin) = node.skin() {
                                 skinned.push((self.scene.instances.len() as u32, m, skin.index()));
                             }
@@ -726,7 +753,8 @@ impl Loader<'_> {
             .collect();
         self.scene.cameras = cameras.into_iter().map(|(_, c)| c).collect();
         let skins = self.skins(&skinned)?;
-        if doc.animations().len() > 0 || !skins.is_empty() {
+        let morphs = self.morphs(&morphed);
+        if doc.animations().len() > 0 || !skins.is_empty() || !morphs.is_empty() {
             let mut a = match doc.animations().nth(self.animation) {
                 Some(anim) => self.animation(&anim)?,
                 None if doc.animations().len() == 0 => Animation::default(),
@@ -739,6 +767,7 @@ impl Loader<'_> {
                 }
             };
             a.skins = skins;
+            a.morphs = morphs;
             a.nodes = nodes
                 .iter()
                 .map(|n| {
@@ -753,7 +782,7 @@ impl Loader<'_> {
                 .collect();
             a.instances = inst_nodes;
             a.cameras = cam_nodes;
-            if !a.channels.is_empty() || !a.skins.is_empty() {
+            if !a.channels.is_empty() || !a.skins.is_empty() || !a.morphs.is_empty() {
                 self.scene.animation = Some(a);
             }
         }
@@ -774,6 +803,86 @@ impl Loader<'_> {
         stats.animations = doc.animations().len();
         self.scene.stats.triangles = self.scene.triangle_count();
         Ok(self.scene)
+    }
+
+    /// A morph-target weights channel: key times and, per key element, one weight per target.
+    fn weight_channel(
+        &self,
+        ch: &gltf::animation::Channel,
+    ) -> Result<Option<WeightChannel>, String> {
+        let sampler = ch.sampler();
+        let interpolation = interpolation_of(sampler.interpolation());
+        let times = self.key_times(&sampler.input())?;
+        let output = sampler.output();
+        if output.dimensions() != Dimensions::Scalar {
+            return Err(format!("weights accessor {} is not SCALAR", output.index()));
+        }
+        let (dt, norm) = (output.data_type(), output.normalized());
+        let values: Vec<f32> = read_elements(&output, self.buffers, |b| component(dt, b, norm))?;
+        let elements = times.len() * interpolation.per_key();
+        if elements == 0 {
+            return Ok(None);
+        }
+        if !values.len().is_multiple_of(elements) || values.iter().any(|v| !v.is_finite()) {
+            return Err(format!(
+                "{} weights do not divide into {} key elements (or are not finite)",
+                values.len(),
+                elements
+            ));
+        }
+        Ok(Some(WeightChannel {
+            node: ch.target().node().index() as u32,
+            interpolation,
+            width: values.len() / elements,
+            times,
+            values,
+        }))
+    }
+
+    /// Key times of a sampler input: float SCALAR, finite and increasing.
+    fn key_times(&self, input: &gltf::Accessor) -> Result<Vec<f32>, String> {
+        if input.dimensions() != Dimensions::Scalar || input.data_type() != DataType::F32 {
+            return Err(format!(
+                "input accessor {} is not a float SCALAR",
+                input.index()
+            ));
+        }
+        let times: Vec<f32> = read_elements(input, self.buffers, |b| {
+            f32::from_le_bytes([b[0], b[1], b[2], b[3]])
+        })?;
+        if times.iter().any(|t| !t.is_finite()) || times.windows(2).any(|w| w[1] < w[0]) {
+            return Err("key times are not finite and increasing".into());
+        }
+        Ok(times)
+    }
+
+    /// Meshes with morph targets, with the rest shape to displace; a mesh placed by several nodes
+    /// takes the first node's weights.
+    fn morphs(&mut self, morphed: &[(u32, u32, Vec<f32>)]) -> Vec<Morph> {
+        let mut out: Vec<Morph> = Vec::new();
+        for (mesh, node, weights) in morphed {
+            if out.iter().any(|m| m.mesh == *mesh) {
+                self.scene.warnings.push(format!(
+                    "mesh {mesh} with morph targets is placed by several nodes; it takes the first node's weights"
+                ));
+                continue;
+            }
+            let Some(targets) = self.morph_attrs.get(mesh) else {
+                continue;
+            };
+            let m = &self.scene.meshes[*mesh as usize];
+            let mut default_weights = weights.clone();
+            default_weights.resize(targets.len(), 0.0);
+            out.push(Morph {
+                mesh: *mesh,
+                node: *node,
+                default_weights,
+                targets: targets.clone(),
+                rest_positions: m.positions.clone(),
+                rest_normals: m.normals.clone(),
+            });
+        }
+        out
     }
 
     /// Skins of the skinned instances: joints, inverse bind matrices, and the mesh's rest shape with
@@ -852,7 +961,6 @@ impl Loader<'_> {
     /// The channels of one animation on node translation, rotation and scale (morph weights are
     /// skipped with a warning); the caller adds the node hierarchy.
     fn animation(&mut self, anim: &gltf::Animation) -> Result<Animation, String> {
-        use super::animation::{Channel, Interpolation, Property};
         let label = match anim.name() {
             Some(n) => format!("animation {} ('{n}')", anim.index()),
             None => format!("animation {}", anim.index()),
@@ -861,38 +969,23 @@ impl Loader<'_> {
             name: anim.name().unwrap_or("").to_owned(),
             ..Default::default()
         };
-        let mut weights = false;
         for (ci, ch) in anim.channels().enumerate() {
             let property = match ch.target().property() {
                 gltf::animation::Property::Translation => Property::Translation,
                 gltf::animation::Property::Rotation => Property::Rotation,
                 gltf::animation::Property::Scale => Property::Scale,
                 gltf::animation::Property::MorphTargetWeights => {
-                    weights = true;
+                    let c = self
+                        .weight_channel(&ch)
+                        .map_err(|e| format!("{label}, channel {ci}: {e}"))?;
+                    out.weights.extend(c);
                     continue;
                 }
             };
             let at = |e: String| format!("{label}, channel {ci}: {e}");
             let sampler = ch.sampler();
-            let interpolation = match sampler.interpolation() {
-                gltf::animation::Interpolation::Linear => Interpolation::Linear,
-                gltf::animation::Interpolation::Step => Interpolation::Step,
-                gltf::animation::Interpolation::CubicSpline => Interpolation::CubicSpline,
-            };
-            let input = sampler.input();
-            if input.dimensions() != Dimensions::Scalar || input.data_type() != DataType::F32 {
-                return Err(at(format!(
-                    "input accessor {} is not a float SCALAR",
-                    input.index()
-                )));
-            }
-            let times: Vec<f32> = read_elements(&input, self.buffers, |b| {
-                f32::from_le_bytes([b[0], b[1], b[2], b[3]])
-            })
-            .map_err(at)?;
-            if times.iter().any(|t| !t.is_finite()) || times.windows(2).any(|w| w[1] < w[0]) {
-                return Err(at("key times are not finite and increasing".into()));
-            }
+            let interpolation = interpolation_of(sampler.interpolation());
+            let times = self.key_times(&sampler.input()).map_err(at)?;
             let output = sampler.output();
             let values: Vec<Vec4> = match property {
                 Property::Rotation => read_vec::<4>(&output, self.buffers, "rotation output")
@@ -932,11 +1025,6 @@ impl Loader<'_> {
                 times,
                 values,
             });
-        }
-        if weights {
-            self.scene.warnings.push(format!(
-                "{label}: morph-target weight channels are ignored (meshes keep their base shape)"
-            ));
         }
         Ok(out)
     }
@@ -1169,6 +1257,9 @@ impl Loader<'_> {
                 if let Some(attrs) = self.pending_skin.take() {
                     self.skin_attrs.insert(index, attrs);
                 }
+                if let Some(targets) = self.pending_morph.take() {
+                    self.morph_attrs.insert(index, targets);
+                }
                 Some(index)
             }
             None => None,
@@ -1298,6 +1389,38 @@ impl Loader<'_> {
                 .map(|k| Vec4::from(weights[pick(k)]))
                 .collect();
             self.pending_skin = Some((joints, weights));
+        }
+        self.pending_morph = None;
+        if prim.morph_targets().len() > 0 {
+            let pick = |k: usize| kept.as_ref().map_or(k, |o| o[k]);
+            let mut targets = Vec::new();
+            for (ti, target) in prim.morph_targets().enumerate() {
+                let what = format!("morph target {ti}");
+                let read = |acc: Option<gltf::Accessor>| -> Result<Vec<Vec3>, String> {
+                    match acc {
+                        Some(a) => {
+                            let v = read_vec::<3>(&a, self.buffers, &what)?;
+                            check_len(&what, v.len())?;
+                            Ok((0..m.positions.len())
+                                .map(|k| Vec3::from(v[pick(k)]))
+                                .collect())
+                        }
+                        None => Ok(Vec::new()),
+                    }
+                };
+                let dp = read(target.positions())?;
+                let dn = read(target.normals())?;
+                let dp = if dp.is_empty() {
+                    vec![Vec3::ZERO; m.positions.len()]
+                } else {
+                    dp
+                };
+                if dp.iter().chain(&dn).any(|d| !d.is_finite()) {
+                    return Err(format!("{what}: displacements are not finite"));
+                }
+                targets.push((dp, dn));
+            }
+            self.pending_morph = Some(targets);
         }
         if m.indices.is_empty() {
             self.scene
@@ -1496,6 +1619,60 @@ mod tests {
     }
 
     const TRI: [[f32; 3]; 3] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+
+    #[test]
+    fn morph_target_weights_are_animated_and_posed() {
+        // A triangle, one target lifting it by z = 1, weights keyed 0 -> 1 over a second.
+        let floats: Vec<f32> = TRI
+            .iter()
+            .flatten()
+            .copied()
+            .chain([0.0, 0.0, 1.0].repeat(3))
+            .chain([0.0, 1.0, 0.0, 1.0])
+            .collect();
+        let data: Vec<u8> = floats.iter().flat_map(|f| f.to_le_bytes()).collect();
+        let json = format!(
+            r#"{{
+  "asset": {{"version": "2.0"}},
+  "buffers": [{{"byteLength": {len}, "uri": "data:application/octet-stream;base64,{b64}"}}],
+  "bufferViews": [{{"buffer": 0, "byteLength": {len}}}],
+  "accessors": [
+    {{"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 3, "type": "VEC3"}},
+    {{"bufferView": 0, "byteOffset": 36, "componentType": 5126, "count": 3, "type": "VEC3"}},
+    {{"bufferView": 0, "byteOffset": 72, "componentType": 5126, "count": 2, "type": "SCALAR"}},
+    {{"bufferView": 0, "byteOffset": 80, "componentType": 5126, "count": 2, "type": "SCALAR"}}
+  ],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "targets": [{{"POSITION": 1}}]}}],
+              "weights": [0.25]}}],
+  "nodes": [{{"mesh": 0}}],
+  "scenes": [{{"nodes": [0]}}],
+  "animations": [{{"channels": [{{"sampler": 0, "target": {{"node": 0, "path": "weights"}}}}],
+                   "samplers": [{{"input": 2, "output": 3}}]}}]
+}}"#,
+            len = data.len(),
+            b64 = base64(&data),
+        );
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("m.gltf");
+        std::fs::write(&p, json).unwrap();
+        let scene = Scene::load(&p).unwrap();
+        assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+        let z_at = |t: f32| {
+            let mut s = scene.clone();
+            super::super::animation::pose(&mut s, t, [0.0, 0.0]);
+            s.meshes[0]
+                .positions
+                .iter()
+                .map(|p| p.z)
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(z_at(0.5), vec![0.5; 3]);
+        assert_eq!(z_at(7.0), vec![1.0; 3]);
+        // Unposed, the mesh is the file's base shape.
+        assert!(scene.meshes[0].positions.iter().all(|p| p.z == 0.0));
+        let a = scene.animation.as_ref().unwrap();
+        assert_eq!(a.morphs[0].default_weights, vec![0.25]);
+    }
 
     #[test]
     fn one_mesh_two_nodes_is_one_mesh_two_instances() {
