@@ -358,8 +358,11 @@ pub fn run(cli: Cli) -> Result<()> {
     }
 }
 
+/// Loads a model posed at the start of its first animation (skins and morphs included).
 fn load(path: &std::path::Path) -> Result<Scene> {
-    load_animated(path, 0)
+    let mut scene = load_animated(path, 0)?;
+    animation::pose(&mut scene, 0.0, [0.0, 0.0]);
+    Ok(scene)
 }
 
 /// Loads a model with animation `animation` of the file chosen (when it has any).
