@@ -78,8 +78,11 @@ pub struct RenderSettings {
     /// the machine's speed, so it is not reproducible).
     pub time_budget: Option<Duration>,
     /// Shutter interval in seconds relative to `frame_time`; open == close means no motion blur.
+    /// The scene must be posed with these before its accelerator is built
+    /// (`scene::animation::pose(scene, frame_time, shutter)`); the render itself draws ray times only
+    /// when the posed scene has motion.
     pub shutter: [f32; 2],
-    /// Seconds into the scene's animation at which the frame is taken.
+    /// Seconds into the scene's animation at which the frame is taken (see `shutter`).
     pub frame_time: f32,
 }
 
