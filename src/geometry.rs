@@ -20,6 +20,9 @@ pub struct Ray {
     /// Random bits drawn from the sampler for the stochastic decisions made during traversal
     /// (alpha blending), so that every backend makes the same ones for the same path.
     pub seed: u32,
+    /// Normalised time within the shutter, in [0, 1] (0 for static scenes): where moving instances
+    /// are when the ray is traced. Shadow and bounce rays inherit it from the camera ray.
+    pub time: f32,
 }
 
 impl Ray {
@@ -30,6 +33,7 @@ impl Ray {
             t_min: 0.0,
             t_max: f32::INFINITY,
             seed: 0,
+            time: 0.0,
         }
     }
 
@@ -40,11 +44,16 @@ impl Ray {
             t_min: 0.0,
             t_max,
             seed: 0,
+            time: 0.0,
         }
     }
 
     pub fn with_seed(self, seed: u32) -> Self {
         Self { seed, ..self }
+    }
+
+    pub fn with_time(self, time: f32) -> Self {
+        Self { time, ..self }
     }
 
     pub fn at(&self, t: f32) -> Vec3 {

@@ -108,6 +108,52 @@ fn bad_invocations_fail_with_a_message_and_leave_no_file() {
         (vec!["render", demo, "-o", out, "--backend", "gpu"], "gpu"),
         (vec!["render", demo, "-o", out, "--eye", "1,2"], "x,y,z"),
         (vec!["info", missing.to_str().unwrap()], "nope.glb"),
+        (
+            vec!["render", demo, "-o", out, "--focus-distance", "2"],
+            "need --aperture or --fstop",
+        ),
+        (
+            vec!["render", demo, "-o", out, "--fstop", "0"],
+            "--fstop must be positive",
+        ),
+        (
+            vec![
+                "render",
+                demo,
+                "-o",
+                out,
+                "--aperture",
+                "0.1",
+                "--focus-on",
+                "900,2",
+            ],
+            "outside",
+        ),
+        (
+            vec![
+                "render",
+                demo,
+                "-o",
+                out,
+                "--width",
+                "8",
+                "--height",
+                "8",
+                "--aperture",
+                "0.1",
+                "--focus-on",
+                "4,4",
+                "--eye",
+                "0,0,100",
+                "--look-at",
+                "0,0,200",
+            ],
+            "sees no surface",
+        ),
+        (
+            vec!["render", demo, "-o", out, "--shutter", "0.1,0"],
+            "OPEN <= CLOSE",
+        ),
     ];
     for (args, needle) in cases {
         let o = glint(&args);

@@ -9,6 +9,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::flat::{self, TriId};
+use super::motion::MovingSet;
 use super::objects::ObjectBvh;
 use super::triangle::{self, RayShear, Tri4};
 use super::Accel;
@@ -57,6 +58,8 @@ pub struct Bvh {
     ids: Vec<TriId>,
     /// The scene's CSG objects, tested after the triangles.
     objects: ObjectBvh,
+    /// Instances that move during the shutter (absent for static scenes).
+    moving: Option<Box<MovingSet>>,
 }
 
 /// Build-time reference to one triangle.
@@ -68,8 +71,18 @@ struct PrimRef {
 }
 
 impl Bvh {
+    /// Builds over the scene's static instances (world space), plus its moving ones (`MovingSet`).
     pub fn build(scene: Arc<Scene>) -> Self {
         let (tris, ids) = flat::flatten(&scene);
+        let moving = MovingSet::build(&scene).map(Box::new);
+        Self {
+            moving,
+            ..Self::from_triangles(scene, tris, ids)
+        }
+    }
+
+    /// A BVH over exactly these triangles (hits report `ids`), in whatever space they are given.
+    pub fn from_triangles(scene: Arc<Scene>, tris: Vec<[Vec3; 3]>, ids: Vec<TriId>) -> Self {
         let mut refs: Vec<PrimRef> = tris
             .iter()
             .enumerate()
@@ -104,6 +117,22 @@ impl Bvh {
             nodes: out.nodes,
             tris: out.packets,
             ids: out.ids,
+            moving: None,
+        }
+    }
+
+    /// Closest (or, with `any`, first) hit on this structure's own triangles only.
+    pub(super) fn traverse_object(&self, ray: &Ray, any: bool) -> Option<Hit> {
+        self.traverse(ray, any)
+    }
+
+    /// The backend's answer: its own triangles, then the moving instances.
+    #[inline]
+    fn query(&self, ray: &Ray, any: bool) -> Option<Hit> {
+        let hit = self.traverse(ray, any);
+        match &self.moving {
+            None => hit,
+            Some(m) => m.intersect(&self.scene, ray, hit, any),
         }
     }
 
@@ -113,7 +142,8 @@ impl Bvh {
 
     /// Bytes held by the structure (nodes, triangles, ids).
     fn bytes(&self) -> usize {
-        self.nodes.len() * std::mem::size_of::<Node4>()
+        self.moving.as_ref().map_or(0, |m| m.memory_bytes())
+            + self.nodes.len() * std::mem::size_of::<Node4>()
             + self.tris.len() * std::mem::size_of::<Tri4>()
             + self.ids.len() * std::mem::size_of::<TriId>()
     }
@@ -537,15 +567,15 @@ impl Accel for Bvh {
         // Decided before the walk, so the walk of a scene without CSG compiles as it did before
         // (testing after it cost 5% on coherent rays).
         if self.objects.is_empty() {
-            return self.traverse(ray, false);
+            return self.query(ray, false);
         }
-        let best = self.traverse(ray, false);
+        let best = self.query(ray, false);
         self.objects
             .intersect(&self.scene.csg, ray, best, crate::geometry::CSG_BIT)
     }
 
     fn occluded(&self, ray: &Ray) -> bool {
-        self.traverse(ray, true).is_some()
+        self.query(ray, true).is_some()
             || (!self.objects.is_empty() && self.objects.occluded(&self.scene.csg, ray))
     }
 

@@ -50,7 +50,7 @@ fn rtc_ray(ray: &Ray, id: u32) -> sys::RTCRay {
         dir_x: ray.d.x,
         dir_y: ray.d.y,
         dir_z: ray.d.z,
-        time: 0.0,
+        time: ray.time,
         tfar: ray.t_max.next_down(),
         mask: u32::MAX,
         id,
@@ -172,6 +172,7 @@ unsafe extern "C" fn alpha_filter(args: *const sys::RTCFilterFunctionNArguments)
                     t_min: f(3),
                     t_max: f(8),
                     seed: 0,
+                    time: f(7),
                 }
             };
             if !scene.alpha_passes(inst, prim, u, v, &world) {
@@ -222,6 +223,7 @@ unsafe fn lane_ray(ray: *const u32, n: usize, lane: usize) -> Ray {
         t_min: f(3),
         t_max: f(8).next_up(),
         seed: 0,
+        time: f(7),
     }
 }
 
@@ -407,7 +409,9 @@ impl EmbreeAccel {
             self.filtered |= alpha;
             let id = u32::try_from(index)
                 .map_err(|_| AccelError::Embree("too many instances".into()))?;
-            let geom = if uses[m] == 1 {
+            // A moving instance is always an Embree instance, with one transform per time step that
+            // Embree interpolates linearly at the ray's time (as `Motion::at` does).
+            let geom = if uses[m] == 1 && inst.motion.is_none() {
                 // Cheaper than an instance: no transform during traversal, one BVH level less.
                 self.triangles(mesh, Some(&inst.to_world), alpha)?
             } else {
@@ -419,19 +423,27 @@ impl EmbreeAccel {
                         c
                     }
                 };
-                let cols = inst.to_world.to_cols_array();
-                // SAFETY: device and child scene are live and the child is committed; Embree copies the
-                // 16 floats of the column-major matrix during the call.
+                let steps = match &inst.motion {
+                    Some(motion) => motion.steps.as_slice(),
+                    None => std::slice::from_ref(&inst.to_world),
+                };
+                // SAFETY: device and child scene are live and the child is committed; the step count
+                // is set before the per-step transforms, and Embree copies the 16 floats of each
+                // column-major matrix during its call.
                 unsafe {
                     let g = sys::rtcNewGeometry(self.device, sys::RTCGeometryType::INSTANCE);
                     if !g.is_null() {
                         sys::rtcSetGeometryInstancedScene(g, child);
-                        sys::rtcSetGeometryTransform(
-                            g,
-                            0,
-                            sys::RTCFormat::FLOAT4X4_COLUMN_MAJOR,
-                            cols.as_ptr().cast(),
-                        );
+                        sys::rtcSetGeometryTimeStepCount(g, steps.len() as u32);
+                        for (k, step) in steps.iter().enumerate() {
+                            let cols = step.to_cols_array();
+                            sys::rtcSetGeometryTransform(
+                                g,
+                                k as u32,
+                                sys::RTCFormat::FLOAT4X4_COLUMN_MAJOR,
+                                cols.as_ptr().cast(),
+                            );
+                        }
                         sys::rtcCommitGeometry(g);
                     }
                     g

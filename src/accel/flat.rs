@@ -46,11 +46,15 @@ impl TriId {
     }
 }
 
-/// World-space vertices of every triangle of every instance, and their identities, in instance order.
+/// World-space vertices of every triangle of every static instance, and their identities, in instance
+/// order. Moving instances are left to `motion::MovingSet`.
 pub fn flatten(scene: &Scene) -> (Vec<[Vec3; 3]>, Vec<TriId>) {
     let mut tris = Vec::with_capacity(scene.triangle_count());
     let mut ids = Vec::with_capacity(tris.capacity());
     for (i, inst) in scene.instances.iter().enumerate() {
+        if inst.motion.is_some() {
+            continue;
+        }
         let mesh = &scene.meshes[inst.mesh as usize];
         let alpha = scene.materials[mesh.material as usize].needs_alpha_test();
         let world: Vec<Vec3> = mesh

@@ -17,6 +17,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::flat::{flatten, TriId};
+use super::motion::MovingSet;
 use super::objects::ObjectBvh;
 use super::triangle::{self, RayShear};
 use super::Accel;
@@ -53,6 +54,8 @@ pub struct GridAccel {
     refs: Vec<u32>,
     /// The scene's CSG objects, tested after the triangles.
     objects: ObjectBvh,
+    /// Instances that move during the shutter (absent for static scenes).
+    moving: Option<Box<MovingSet>>,
 }
 
 impl GridAccel {
@@ -63,6 +66,15 @@ impl GridAccel {
     /// Builds with `lambda` cells per triangle (before clamping). 2 to 4 is the usual sweet spot:
     /// fewer cells hold more triangles each, more cells cost more steps and memory.
     pub fn build_with(scene: Arc<Scene>, lambda: f32) -> Self {
+        let moving = MovingSet::build(&scene).map(Box::new);
+        Self {
+            moving,
+            ..Self::build_static(scene, lambda)
+        }
+    }
+
+    /// The grid over the static instances' world-space triangles.
+    fn build_static(scene: Arc<Scene>, lambda: f32) -> Self {
         let (tris, ids) = flatten(&scene);
         let bounds = tris
             .par_iter()
@@ -82,6 +94,7 @@ impl GridAccel {
                 pad: 0.0,
                 offsets: vec![0, 0],
                 refs: Vec::new(),
+                moving: None,
             };
         }
         // Rounding of crossings and hit points is a few float spacings of the coordinates involved:
@@ -109,6 +122,7 @@ impl GridAccel {
             pad,
             offsets: Vec::new(),
             refs: Vec::new(),
+            moving: None,
         };
         grid.fill();
         grid
@@ -240,6 +254,7 @@ impl GridAccel {
             + self.ids.len() * std::mem::size_of::<TriId>()
             + self.offsets.len() * 4
             + self.refs.len() * 4
+            + self.moving.as_ref().map_or(0, |m| m.memory_bytes())
     }
 
     /// Ray parameter where the ray crosses boundary `k` of `axis` (computed the same way everywhere).
@@ -413,6 +428,18 @@ fn resolution(extent: Vec3, n: usize, lambda: f32) -> [u32; 3] {
     res
 }
 
+impl GridAccel {
+    /// The backend's answer: its own triangles, then the moving instances.
+    #[inline]
+    fn query(&self, ray: &Ray, any: bool) -> Option<Hit> {
+        let hit = self.traverse(ray, any);
+        match &self.moving {
+            None => hit,
+            Some(m) => m.intersect(&self.scene, ray, hit, any),
+        }
+    }
+}
+
 impl Accel for GridAccel {
     fn name(&self) -> &'static str {
         "grid"
@@ -422,15 +449,15 @@ impl Accel for GridAccel {
         // Decided before the walk, so the walk of a scene without CSG compiles as it did before
         // (testing after it cost 5% on coherent rays).
         if self.objects.is_empty() {
-            return self.traverse(ray, false);
+            return self.query(ray, false);
         }
-        let best = self.traverse(ray, false);
+        let best = self.query(ray, false);
         self.objects
             .intersect(&self.scene.csg, ray, best, crate::geometry::CSG_BIT)
     }
 
     fn occluded(&self, ray: &Ray) -> bool {
-        self.traverse(ray, true).is_some()
+        self.query(ray, true).is_some()
             || (!self.objects.is_empty() && self.objects.occluded(&self.scene.csg, ray))
     }
 

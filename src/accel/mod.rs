@@ -8,6 +8,7 @@ pub mod embree;
 pub mod flat;
 pub mod grid;
 pub mod list;
+pub mod motion;
 pub mod objects;
 #[cfg(feature = "obvhs")]
 pub mod obvhs;

@@ -30,6 +30,7 @@ use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
 
 use super::flat::{flatten, TriId};
+use super::motion::MovingSet;
 use super::Accel;
 use crate::geometry::{Hit, Ray};
 use crate::scene::Scene;
@@ -46,6 +47,8 @@ pub struct ObvhsAccel {
     /// obvhs; see `world_scale`.
     scale: f32,
     preset: &'static str,
+    /// Instances that move during the shutter (absent for static scenes).
+    moving: Option<Box<MovingSet>>,
 }
 
 /// A power of two that brings the scene's largest coordinate to at least 2^10 (never below 1).
@@ -120,6 +123,7 @@ impl ObvhsAccel {
             .collect();
         if tris.is_empty() {
             return Self {
+                moving: MovingSet::build(&scene).map(Box::new),
                 scene,
                 bvh: CwBvh::default(),
                 tris: Vec::new(),
@@ -135,6 +139,7 @@ impl ObvhsAccel {
             .map(|&i| (RtTriangle::from(&tris[i as usize]), ids[i as usize]))
             .unzip();
         Self {
+            moving: MovingSet::build(&scene).map(Box::new),
             scene,
             bvh,
             tris,
@@ -184,12 +189,8 @@ impl ObvhsAccel {
     }
 }
 
-impl Accel for ObvhsAccel {
-    fn name(&self) -> &'static str {
-        "obvhs"
-    }
-
-    fn intersect(&self, ray: &Ray) -> Option<Hit> {
+impl ObvhsAccel {
+    fn own_intersect(&self, ray: &Ray) -> Option<Hit> {
         if self.tris.is_empty() {
             return None;
         }
@@ -214,7 +215,7 @@ impl Accel for ObvhsAccel {
         })
     }
 
-    fn occluded(&self, ray: &Ray) -> bool {
+    fn own_occluded(&self, ray: &Ray) -> bool {
         if self.tris.is_empty() {
             return false;
         }
@@ -224,9 +225,32 @@ impl Accel for ObvhsAccel {
             .bvh
             .ray_traverse_miss(r, |r, i| self.candidate(r, i, ray))
     }
+}
+
+impl Accel for ObvhsAccel {
+    fn name(&self) -> &'static str {
+        "obvhs"
+    }
+
+    fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        let hit = self.own_intersect(ray);
+        match &self.moving {
+            None => hit,
+            Some(m) => m.intersect(&self.scene, ray, hit, false),
+        }
+    }
+
+    fn occluded(&self, ray: &Ray) -> bool {
+        self.own_occluded(ray)
+            || self
+                .moving
+                .as_ref()
+                .is_some_and(|m| m.intersect(&self.scene, ray, None, true).is_some())
+    }
 
     fn memory_bytes(&self) -> usize {
-        self.bvh.nodes.len() * std::mem::size_of::<CwBvhNode>()
+        self.moving.as_ref().map_or(0, |m| m.memory_bytes())
+            + self.bvh.nodes.len() * std::mem::size_of::<CwBvhNode>()
             + self.bvh.primitive_indices.len() * std::mem::size_of::<u32>()
             + self.tris.len() * std::mem::size_of::<RtTriangle>()
             + self.ids.len() * std::mem::size_of::<TriId>()

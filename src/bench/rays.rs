@@ -51,6 +51,10 @@ pub struct RaysConfig {
     pub width: usize,
     pub height: usize,
     pub repeat: usize,
+    /// Pose the scene's animation at `frame_time` with this shutter (seconds), so that moving
+    /// instances are measured with motion; rays then carry random times.
+    pub shutter: Option<[f32; 2]>,
+    pub frame_time: f32,
 }
 
 #[derive(Clone, Debug)]
@@ -140,12 +144,20 @@ pub fn generate_rays(scene: &Scene, accel: &dyn Accel, width: usize, height: usi
     defaults::light_if_unlit(&mut lit, &camera.to_world);
     let lights = LightSet::new(&lit);
     let cam = RayCamera::new(&camera, width, height);
+    // Times spread over the shutter when something moves (0 otherwise, as renders do).
+    let timed = scene.has_motion();
     let primary: Vec<Ray> = (0..width * height)
         .map(|i| {
+            let time = if timed {
+                unit(mix64(i as u64 ^ 0x7F4A_7C15_9E37_79B9))
+            } else {
+                0.0
+            };
             cam.ray(Vec2::new(
                 (i % width) as f32 + 0.5,
                 (i / width) as f32 + 0.5,
             ))
+            .with_time(time)
         })
         .collect();
     let secondary: Vec<(Option<Ray>, Ray)> = primary
@@ -164,9 +176,9 @@ pub fn generate_rays(scene: &Scene, accel: &dyn Accel, width: usize, height: usi
             let u = |k: u64| unit(mix64(i as u64 * 4 + k));
             let shadow = lights
                 .sample(&lit, p, u(0), Vec2::new(u(1), u(2)))
-                .map(|ls| Ray::segment(o, ls.wi, ls.dist * (1.0 - 1e-3)));
+                .map(|ls| Ray::segment(o, ls.wi, ls.dist * (1.0 - 1e-3)).with_time(r.time));
             let d = Frame::from_normal(n).to_world(cosine_hemisphere(Vec2::new(u(3), u(1))));
-            Some((shadow, Ray::new(o, d)))
+            Some((shadow, Ray::new(o, d).with_time(r.time)))
         })
         .collect();
     RaySets {
@@ -197,7 +209,11 @@ pub fn run(input: &str, config: &RaysConfig) -> Result<Report> {
     if config.threads.contains(&0) {
         bail!("thread counts must be at least 1");
     }
-    let scene = Arc::new(load_input(input)?);
+    let mut scene = load_input(input)?;
+    if let Some(shutter) = config.shutter {
+        crate::scene::animation::pose(&mut scene, config.frame_time, shutter);
+    }
+    let scene = Arc::new(scene);
     if scene.triangle_count() == 0 {
         bail!("{input}: no triangles to trace");
     }

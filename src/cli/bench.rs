@@ -108,6 +108,13 @@ pub struct RaysArgs {
     /// Also write the figures as JSON.
     #[arg(long)]
     pub json: Option<PathBuf>,
+    /// Shutter OPEN,CLOSE in seconds: measure the file's animation with motion blur (rays at random
+    /// times in the shutter).
+    #[arg(long, value_parser = super::parse_shutter, allow_hyphen_values = true)]
+    pub shutter: Option<[f32; 2]>,
+    /// Seconds into the animation (with --shutter).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub frame_time: f32,
 }
 
 pub fn run(cmd: BenchCommand) -> Result<()> {
@@ -157,6 +164,8 @@ pub fn run(cmd: BenchCommand) -> Result<()> {
                 width: a.width,
                 height: a.height,
                 repeat: a.repeat.max(1),
+                shutter: a.shutter,
+                frame_time: a.frame_time,
             };
             let report = rays::run(&a.input, &config)?;
             super::print_out(&report.table())?;

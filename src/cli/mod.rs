@@ -17,7 +17,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use crate::accel::{self, Backend};
 use crate::film;
 use crate::render::{self, RenderSettings};
-use crate::scene::{defaults, Camera, EnvMap, Light, Projection, Scene};
+use crate::scene::{animation, defaults, Camera, EnvMap, Light, Projection, Scene};
 
 /// Largest accepted image edge, in pixels.
 const MAX_EDGE: usize = 32_768;
@@ -199,11 +199,15 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 1024)]
     pub max_spp: u32,
     /// Render progressively until this time is spent (e.g. 30s, 2m, 500ms); --spp is then ignored.
-    #[arg(long, value_parser = parse_duration)]
-    pub time: Option<std::time::Duration>,
+    #[arg(long = "time", value_parser = parse_duration)]
+    pub time_budget: Option<std::time::Duration>,
     /// Also write the samples each pixel took (.exr: counts; .png: counts / the most).
     #[arg(long)]
     pub spp_map: Option<PathBuf>,
+    #[command(flatten)]
+    pub lens: LensArgs,
+    #[command(flatten)]
+    pub time: TimeArgs,
     /// Flags given on the command line (they win over a scene file's [render] settings).
     #[arg(skip)]
     pub explicit: Vec<String>,
@@ -269,6 +273,127 @@ pub fn main() -> Result<()> {
     run(cli)
 }
 
+/// Depth of field: a thin lens, by aperture radius or f-number, focused at a distance or on a pixel.
+#[derive(clap::Args, Debug, Default)]
+pub struct LensArgs {
+    /// Lens aperture radius in scene units (a thin lens; 0 or absent = pinhole).
+    #[arg(long, conflicts_with = "fstop")]
+    pub aperture: Option<f32>,
+    /// Lens f-number; the focal length comes from the vertical field of view on a 24 mm (full-frame)
+    /// sensor with scene units in metres: f = 12 mm / tan(fov / 2), aperture radius f / (2 N).
+    #[arg(long)]
+    pub fstop: Option<f32>,
+    /// Distance of the plane in focus, along the view axis (default: the model's centre).
+    #[arg(long, conflicts_with = "focus_on")]
+    pub focus_distance: Option<f32>,
+    /// Focus on what pixel X,Y sees (its depth along the view axis).
+    #[arg(long, value_parser = parse_pixel)]
+    pub focus_on: Option<[u32; 2]>,
+}
+
+/// Motion blur and animation time.
+#[derive(clap::Args, Debug, Default)]
+pub struct TimeArgs {
+    /// Shutter interval OPEN,CLOSE in seconds relative to --frame-time (e.g. 0,0.033); equal values
+    /// mean no motion blur.
+    #[arg(long, value_parser = parse_shutter, allow_hyphen_values = true)]
+    pub shutter: Option<[f32; 2]>,
+    /// Seconds into the file's animation at which the frame is taken.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub frame_time: f32,
+    /// Which of the file's animations plays, by index (default: the first).
+    #[arg(long, default_value_t = 0)]
+    pub animation: usize,
+}
+
+fn parse_pixel(s: &str) -> Result<[u32; 2], String> {
+    match s
+        .split(',')
+        .map(|c| c.trim().parse::<u32>())
+        .collect::<Vec<_>>()[..]
+    {
+        [Ok(x), Ok(y)] => Ok([x, y]),
+        _ => Err(format!(
+            "'{s}': expected a pixel X,Y (two non-negative integers)"
+        )),
+    }
+}
+
+fn parse_shutter(s: &str) -> Result<[f32; 2], String> {
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|c| c.trim().parse::<f32>())
+        .collect::<Result<_, _>>()
+        .map_err(|e| format!("'{s}': {e} (expected OPEN,CLOSE in seconds)"))?;
+    match v[..] {
+        [a, b] if a.is_finite() && b.is_finite() && a <= b => Ok([a, b]),
+        _ => Err(format!(
+            "'{s}': expected OPEN,CLOSE in seconds with OPEN <= CLOSE"
+        )),
+    }
+}
+
+impl LensArgs {
+    /// The thin lens these flags ask for on `camera` (None for a pinhole). `--focus-on` traces a ray
+    /// through the pixel; the default focus is the model's centre.
+    pub fn lens(
+        &self,
+        scene: &Scene,
+        accel: &dyn accel::Accel,
+        camera: &Camera,
+        size: (usize, usize),
+    ) -> Result<Option<crate::scene::Lens>> {
+        let yfov = match camera.projection {
+            Projection::Perspective { yfov, .. } => yfov,
+            Projection::Orthographic { .. } => defaults::DEFAULT_FOV_DEG.to_radians(),
+        };
+        let radius = match (self.aperture, self.fstop) {
+            (Some(a), _) if !(a >= 0.0 && a.is_finite()) => {
+                bail!("--aperture must be a non-negative radius")
+            }
+            (Some(a), _) => a,
+            (None, Some(n)) if !(n > 0.0 && n.is_finite()) => bail!("--fstop must be positive"),
+            (None, Some(n)) => crate::scene::Lens::from_fstop(n, yfov, 1.0).radius,
+            (None, None) => {
+                if self.focus_distance.is_some() || self.focus_on.is_some() {
+                    bail!("--focus-distance and --focus-on need --aperture or --fstop");
+                }
+                return Ok(None);
+            }
+        };
+        if radius == 0.0 {
+            return Ok(None);
+        }
+        let axis = camera.to_world.transform_vector3(-Vec3::Z).normalize();
+        let focus_distance = match (self.focus_distance, self.focus_on) {
+            (Some(d), _) if !(d > 0.0 && d.is_finite()) => {
+                bail!("--focus-distance must be positive")
+            }
+            (Some(d), _) => d,
+            (None, Some([x, y])) => {
+                let (w, h) = size;
+                if x as usize >= w || y as usize >= h {
+                    bail!("--focus-on {x},{y} is outside the {w}x{h} image");
+                }
+                let cam = render::RayCamera::new(camera, w, h);
+                let ray = cam.ray(glam::Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
+                let hit = accel.intersect(&ray).with_context(|| {
+                    format!("--focus-on {x},{y}: the pixel sees no surface to focus on")
+                })?;
+                hit.t * ray.d.dot(axis)
+            }
+            (None, None) => {
+                let (center, _) = defaults::bounding_sphere(&scene.bounds());
+                (center - camera.position()).dot(axis).max(1e-3)
+            }
+        };
+        Ok(Some(crate::scene::Lens {
+            radius,
+            focus_distance,
+        }))
+    }
+}
+
 /// A duration such as `30s`, `1.5m`, `500ms` or `20` (seconds).
 pub fn parse_duration(s: &str) -> Result<std::time::Duration, String> {
     let t = s.trim();
@@ -312,8 +437,16 @@ pub fn run(cli: Cli) -> Result<()> {
     }
 }
 
+/// Loads a model posed at the start of its first animation (skins and morphs included).
 fn load(path: &std::path::Path) -> Result<Scene> {
-    let scene = Scene::load(path)?;
+    let mut scene = load_animated(path, 0)?;
+    animation::pose(&mut scene, 0.0, [0.0, 0.0]);
+    Ok(scene)
+}
+
+/// Loads a model with animation `animation` of the file chosen (when it has any).
+fn load_animated(path: &std::path::Path, animation: usize) -> Result<Scene> {
+    let scene = Scene::load_with_animation(path, animation)?;
     for w in &scene.warnings {
         eprintln!("warning: {}: {w}", path.display());
     }
@@ -468,11 +601,13 @@ fn render_command(mut args: RenderArgs) -> Result<()> {
         .as_deref()
         .map(|path| env_light(path, &args))
         .transpose()?;
-    let mut scene = load(&args.input)?;
+    let mut scene = load_animated(&args.input, args.time.animation)?;
+    let shutter = args.time.shutter.unwrap_or([0.0, 0.0]);
+    animation::pose(&mut scene, args.time.frame_time, shutter);
     let load_s = t0.elapsed().as_secs_f64();
     args.apply_file_settings(&scene.settings)?;
     args.image.validate()?;
-    let camera = choose_camera(&scene, &args)?;
+    let mut camera = choose_camera(&scene, &args)?;
     let rig = args.default_lights.wanted(&scene);
     if let Some(env) = environment {
         scene
@@ -493,6 +628,12 @@ fn render_command(mut args: RenderArgs) -> Result<()> {
     let t1 = Instant::now();
     let accel = accel::build(scene.clone(), args.image.backend)?;
     let build_s = t1.elapsed().as_secs_f64();
+    camera.lens = args.lens.lens(
+        &scene,
+        accel.as_ref(),
+        &camera,
+        (args.image.width, args.image.height),
+    )?;
 
     let progress = progress_bar(
         args.quiet,
@@ -515,7 +656,9 @@ fn render_command(mut args: RenderArgs) -> Result<()> {
         target_error: args.target_error,
         min_spp: args.min_spp,
         max_spp: args.max_spp,
-        time_budget: args.time,
+        time_budget: args.time_budget,
+        shutter,
+        frame_time: args.time.frame_time,
     };
     let out = render::render_full(&scene, accel.as_ref(), &camera, &settings, &progress);
     let (image, stats) = (&out.image, out.stats);

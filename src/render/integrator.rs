@@ -180,8 +180,9 @@ impl<'a> Integrator<'a> {
                         } else {
                             f32::INFINITY
                         };
-                        let shadow =
-                            Ray::segment(origin_towards(ls.wi), ls.wi, t_max).with_seed(seed);
+                        let shadow = Ray::segment(origin_towards(ls.wi), ls.wi, t_max)
+                            .with_seed(seed)
+                            .with_time(ray.time);
                         let tr = self.transmittance::<THIN>(shadow, &mut rays);
                         if tr != Vec3::ZERO {
                             let w = if ls.is_delta {
@@ -223,7 +224,9 @@ impl<'a> Integrator<'a> {
             if !s.straight {
                 prev = (!s.delta).then_some((s.pdf, si.p));
             }
-            ray = Ray::new(origin_towards(s.wi), s.wi).with_seed(seed);
+            ray = Ray::new(origin_towards(s.wi), s.wi)
+                .with_seed(seed)
+                .with_time(ray.time);
 
             if bounce + 1 >= ROULETTE_START {
                 let q = (beta.max_element() * eta_scale).min(0.95);

@@ -77,6 +77,13 @@ pub struct RenderSettings {
     /// Render in rounds until this much time is spent (then `spp` is ignored; the result depends on
     /// the machine's speed, so it is not reproducible).
     pub time_budget: Option<Duration>,
+    /// Shutter interval in seconds relative to `frame_time`; open == close means no motion blur.
+    /// The scene must be posed with these before its accelerator is built
+    /// (`scene::animation::pose(scene, frame_time, shutter)`); the render itself draws ray times only
+    /// when the posed scene has motion.
+    pub shutter: [f32; 2],
+    /// Seconds into the scene's animation at which the frame is taken (see `shutter`).
+    pub frame_time: f32,
 }
 
 impl Default for RenderSettings {
@@ -95,6 +102,8 @@ impl Default for RenderSettings {
             min_spp: 16,
             max_spp: 1024,
             time_budget: None,
+            shutter: [0.0, 0.0],
+            frame_time: 0.0,
         }
     }
 }
@@ -208,7 +217,9 @@ impl Ctx<'_> {
             sampler.start(x as u32, y as u32, i);
             let (offset, w) = self.filter.sample(sampler.get_2d(Dim::Pixel, 0));
             let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
-            let r = self.integrator.li(self.cam.ray(film), sampler);
+            let r = self
+                .integrator
+                .li(self.cam.generate(film, sampler), sampler);
             rays += r.rays as u64;
             // A non-finite sample would poison the pixel: count it as black.
             let v = if r.radiance.is_finite() {
@@ -322,7 +333,9 @@ impl Ctx<'_> {
             x as f32 + cx as f32 / st.g as f32,
             y as f32 + cy as f32 / st.g as f32,
         );
-        let r = self.integrator.li(self.cam.ray(film), sampler);
+        let r = self
+            .integrator
+            .li(self.cam.generate(film, sampler), sampler);
         st.rays += r.rays as u64;
         let v = if r.radiance.is_finite() {
             r.radiance
@@ -377,7 +390,7 @@ pub fn render_full(
     };
     let ctx = Ctx {
         integrator: Integrator::new(scene, accel, settings.max_depth),
-        cam: RayCamera::new(camera, w, h),
+        cam: RayCamera::new(camera, w, h).with_time(scene.has_motion()),
         filter: Filter::new(settings.filter, settings.filter_radius),
         settings,
         pass,

@@ -42,7 +42,15 @@ impl SurfaceInteraction {
         let mat = &scene.materials[mesh.material as usize];
         let [i0, i1, i2] = mesh.indices[hit.prim as usize].map(|i| i as usize);
         let (u, v, w) = (hit.u, hit.v, 1.0 - hit.u - hit.v);
-        let [p0, p1, p2] = [i0, i1, i2].map(|i| inst.to_world.transform_point3(mesh.positions[i]));
+        // A moving instance is where it was at the ray's time.
+        let (to_world, normal_to_world) = match &inst.motion {
+            Some(m) => {
+                let t = m.at(ray.time);
+                (t, glam::Mat3::from_mat4(t).inverse().transpose())
+            }
+            None => (inst.to_world, inst.normal_to_world),
+        };
+        let [p0, p1, p2] = [i0, i1, i2].map(|i| to_world.transform_point3(mesh.positions[i]));
         // Interpolated from the vertices rather than o + t d: the error stays within the triangle's
         // own rounding, which the ray-offset bounds expect.
         let p = p0 * w + p1 * u + p2 * v;
@@ -50,7 +58,7 @@ impl SurfaceInteraction {
         if ng == Vec3::ZERO {
             ng = -ray.d;
         }
-        let interp_n = (inst.normal_to_world
+        let interp_n = (normal_to_world
             * (mesh.normals[i0] * w + mesh.normals[i1] * u + mesh.normals[i2] * v))
             .normalize_or_zero();
         // The outside is where the vertex normals point (robust to mirrored instances and to
@@ -68,7 +76,7 @@ impl SurfaceInteraction {
         let uv = mesh.uv_at(hit.prim, u, v);
 
         if let Some(nm) = tex(scene, mat.normal_tex, uv) {
-            if let Some((t, b)) = tangent_frame(scene, hit, n) {
+            if let Some((t, b)) = tangent_frame(scene, hit, n, &to_world) {
                 let m = nm.xyz() * 2.0 - Vec3::ONE;
                 let m = Vec3::new(m.x * mat.normal_scale, m.y * mat.normal_scale, m.z);
                 let mapped = (t * m.x + b * m.y + n * m.z).normalize_or_zero();
@@ -165,20 +173,20 @@ fn valid_reflection_normal(n: Vec3, ng: Vec3, wo: Vec3) -> Vec3 {
 
 /// Tangent and bitangent for normal mapping, orthogonalised against `n`: from the mesh's tangents when
 /// it has them, otherwise from the triangle's UV parameterisation.
-fn tangent_frame(scene: &Scene, hit: &Hit, n: Vec3) -> Option<(Vec3, Vec3)> {
+fn tangent_frame(scene: &Scene, hit: &Hit, n: Vec3, to_world: &glam::Mat4) -> Option<(Vec3, Vec3)> {
     let inst = &scene.instances[hit.inst as usize];
     let mesh = &scene.meshes[inst.mesh as usize];
     let [i0, i1, i2] = mesh.indices[hit.prim as usize].map(|i| i as usize);
     let (u, v, w) = (hit.u, hit.v, 1.0 - hit.u - hit.v);
     let (t, sign) = if !mesh.tangents.is_empty() {
         let t4 = mesh.tangents[i0] * w + mesh.tangents[i1] * u + mesh.tangents[i2] * v;
-        let t = inst.to_world.transform_vector3(t4.xyz());
+        let t = to_world.transform_vector3(t4.xyz());
         (t, if mesh.tangents[i0].w < 0.0 { -1.0 } else { 1.0 })
     } else {
         if mesh.uvs.is_empty() {
             return None;
         }
-        let [p0, p1, p2] = [i0, i1, i2].map(|i| inst.to_world.transform_point3(mesh.positions[i]));
+        let [p0, p1, p2] = [i0, i1, i2].map(|i| to_world.transform_point3(mesh.positions[i]));
         let [t0, t1, t2] = [i0, i1, i2].map(|i| mesh.uvs[i]);
         let (e1, e2) = (p1 - p0, p2 - p0);
         let (d1, d2) = (t1 - t0, t2 - t0);

@@ -18,8 +18,10 @@ use gltf::accessor::{DataType, Dimensions};
 use gltf::json::Value;
 use gltf::mesh::Mode;
 
+use super::animation::{Channel, Interpolation, Morph, Property, Skin, WeightChannel};
 use super::{
-    AlphaMode, Camera, Light, LoadError, Material, Mesh, Projection, Scene, TexRef, Texture, Wrap,
+    AlphaMode, Animation, Camera, Light, LoadError, Material, Mesh, Projection, Scene, TexRef,
+    Texture, Wrap,
 };
 
 /// Extensions glint understands well enough that a file may require them.
@@ -33,8 +35,9 @@ const SUPPORTED_REQUIRED: &[&str] = &[
 ];
 
 /// Loads a .gltf or .glb file. Never panics on malformed input: every problem is a `LoadError`.
-pub fn load(path: &Path) -> Result<Scene, LoadError> {
-    match catch_unwind(AssertUnwindSafe(|| load_inner(path))) {
+/// Loads a glTF file keeping its animation number `animation` (when it has animations).
+pub fn load(path: &Path, animation: usize) -> Result<Scene, LoadError> {
+    match catch_unwind(AssertUnwindSafe(|| load_inner(path, animation))) {
         Ok(r) => r,
         Err(_) => Err(LoadError::new(
             path,
@@ -43,7 +46,7 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
     }
 }
 
-fn load_inner(path: &Path) -> Result<Scene, LoadError> {
+fn load_inner(path: &Path, animation: usize) -> Result<Scene, LoadError> {
     let err = |m: String| LoadError::new(path, m);
     let bytes = std::fs::read(path).map_err(|e| err(format!("cannot read file: {e}")))?;
     let base = path.parent().unwrap_or_else(|| Path::new("."));
@@ -109,9 +112,25 @@ fn load_inner(path: &Path) -> Result<Scene, LoadError> {
         images: HashMap::new(),
         default_material: None,
         dropped: 0,
+        animation,
+        pending_skin: None,
+        skin_attrs: HashMap::new(),
+        pending_morph: None,
+        morph_attrs: HashMap::new(),
     }
     .run()
     .map_err(err)
+}
+
+/// One morph target's position and normal displacements.
+type MorphTarget = (Vec<Vec3>, Vec<Vec3>);
+
+fn interpolation_of(i: gltf::animation::Interpolation) -> Interpolation {
+    match i {
+        gltf::animation::Interpolation::Linear => Interpolation::Linear,
+        gltf::animation::Interpolation::Step => Interpolation::Step,
+        gltf::animation::Interpolation::CubicSpline => Interpolation::CubicSpline,
+    }
 }
 
 /// Splits a binary glTF into its JSON chunk and BIN chunk, checking every length.
@@ -583,6 +602,16 @@ struct Loader<'a> {
     images: HashMap<usize, Option<Rc<Pixels>>>,
     default_material: Option<u32>,
     dropped: usize,
+    /// Which animation to keep.
+    animation: usize,
+    /// Per-vertex joints and weights of the last primitive built, when skinned.
+    pending_skin: Option<(Vec<[u16; 4]>, Vec<Vec4>)>,
+    /// Joints and weights of skinned scene meshes, by mesh index.
+    skin_attrs: HashMap<u32, (Vec<[u16; 4]>, Vec<Vec4>)>,
+    /// Morph targets (position and normal displacements) of the last primitive built.
+    pending_morph: Option<Vec<MorphTarget>>,
+    /// Morph targets of scene meshes, by mesh index.
+    morph_attrs: HashMap<u32, Vec<MorphTarget>>,
 }
 
 impl Loader<'_> {
@@ -609,6 +638,14 @@ impl Loader<'_> {
 
         let nodes: Vec<gltf::Node> = doc.nodes().collect();
         let mut visited = vec![false; nodes.len()];
+        // The hierarchy as reached from the roots, for animation: parents, and what hangs from nodes.
+        let mut parent_of: Vec<Option<u32>> = vec![None; nodes.len()];
+        let mut inst_nodes: Vec<(u32, u32)> = Vec::new();
+        let mut cam_nodes: Vec<(usize, u32)> = Vec::new();
+        // (instance, scene mesh, glTF skin) of every skinned primitive placed.
+        let mut skinned: Vec<(u32, u32, usize)> = Vec::new();
+        // (scene mesh, node, default weights) of every primitive with morph targets placed.
+        let mut morphed: Vec<(u32, u32, Vec<f32>)> = Vec::new();
         let mut cameras: Vec<(usize, Camera)> = Vec::new();
         let mut stack: Vec<(usize, Mat4)> =
             roots.iter().rev().map(|&r| (r, Mat4::IDENTITY)).collect();
@@ -624,6 +661,9 @@ impl Loader<'_> {
             let local = Mat4::from_cols_array_2d(&node.transform().matrix());
             let world = parent * local;
             for c in node.children().collect::<Vec<_>>().into_iter().rev() {
+                if !visited[c.index()] {
+                    parent_of[c.index()] = Some(ni as u32);
+                }
                 stack.push((c.index(), world));
             }
             let label = match node.name() {
@@ -644,6 +684,18 @@ impl Loader<'_> {
                 } else {
                     for prim in mesh.primitives() {
                         if let Some(m) = self.primitive(&mesh, &prim)? {
+                            if self.morph_attrs.contains_key(&m) {
+                                let weights = node
+                                    .weights()
+                                    .or(mesh.weights())
+                                    .map(<[f32]>::to_vec)
+                                    .unwrap_or_default();
+                                morphed.push((m, ni as u32, weights));
+                            }
+                            if let Some(skin) = node.skin() {
+                                skinned.push((self.scene.instances.len() as u32, m, skin.index()));
+                            }
+                            inst_nodes.push((self.scene.instances.len() as u32, ni as u32));
                             self.scene.instances.push(super::Instance::new(m, world));
                         }
                     }
@@ -674,18 +726,66 @@ impl Loader<'_> {
                     .or(node.name())
                     .map(str::to_owned)
                     .unwrap_or_else(|| format!("camera {}", cam.index()));
+                cam_nodes.push((cam.index(), ni as u32));
                 cameras.push((
                     cam.index(),
                     Camera {
                         name,
                         to_world: Mat4::from_rotation_translation(rot, trans),
                         projection,
+                        lens: None,
+                        motion: None,
                     },
                 ));
             }
         }
         cameras.sort_by_key(|(i, _)| *i);
+        // Camera nodes by position in the sorted list.
+        let cam_nodes: Vec<(u32, u32)> = cameras
+            .iter()
+            .enumerate()
+            .filter_map(|(k, (ci, _))| {
+                cam_nodes
+                    .iter()
+                    .find(|(c, _)| c == ci)
+                    .map(|&(_, n)| (k as u32, n))
+            })
+            .collect();
         self.scene.cameras = cameras.into_iter().map(|(_, c)| c).collect();
+        let skins = self.skins(&skinned)?;
+        let morphs = self.morphs(&morphed);
+        if doc.animations().len() > 0 || !skins.is_empty() || !morphs.is_empty() {
+            let mut a = match doc.animations().nth(self.animation) {
+                Some(anim) => self.animation(&anim)?,
+                None if doc.animations().len() == 0 => Animation::default(),
+                None => {
+                    return Err(format!(
+                        "no animation {} (the file has {})",
+                        self.animation,
+                        doc.animations().len()
+                    ))
+                }
+            };
+            a.skins = skins;
+            a.morphs = morphs;
+            a.nodes = nodes
+                .iter()
+                .map(|n| {
+                    let (t, r, s) = n.transform().decomposed();
+                    super::animation::Node {
+                        parent: parent_of[n.index()],
+                        translation: Vec3::from(t),
+                        rotation: Quat::from_array(r).normalize(),
+                        scale: Vec3::from(s),
+                    }
+                })
+                .collect();
+            a.instances = inst_nodes;
+            a.cameras = cam_nodes;
+            if !a.channels.is_empty() || !a.skins.is_empty() || !a.morphs.is_empty() {
+                self.scene.animation = Some(a);
+            }
+        }
 
         if self.dropped > 0 {
             self.scene
@@ -703,6 +803,230 @@ impl Loader<'_> {
         stats.animations = doc.animations().len();
         self.scene.stats.triangles = self.scene.triangle_count();
         Ok(self.scene)
+    }
+
+    /// A morph-target weights channel: key times and, per key element, one weight per target.
+    fn weight_channel(
+        &self,
+        ch: &gltf::animation::Channel,
+    ) -> Result<Option<WeightChannel>, String> {
+        let sampler = ch.sampler();
+        let interpolation = interpolation_of(sampler.interpolation());
+        let times = self.key_times(&sampler.input())?;
+        let output = sampler.output();
+        if output.dimensions() != Dimensions::Scalar {
+            return Err(format!("weights accessor {} is not SCALAR", output.index()));
+        }
+        let (dt, norm) = (output.data_type(), output.normalized());
+        let values: Vec<f32> = read_elements(&output, self.buffers, |b| component(dt, b, norm))?;
+        let elements = times.len() * interpolation.per_key();
+        if elements == 0 {
+            return Ok(None);
+        }
+        if !values.len().is_multiple_of(elements) || values.iter().any(|v| !v.is_finite()) {
+            return Err(format!(
+                "{} weights do not divide into {} key elements (or are not finite)",
+                values.len(),
+                elements
+            ));
+        }
+        Ok(Some(WeightChannel {
+            node: ch.target().node().index() as u32,
+            interpolation,
+            width: values.len() / elements,
+            times,
+            values,
+        }))
+    }
+
+    /// Key times of a sampler input: float SCALAR, finite and increasing.
+    fn key_times(&self, input: &gltf::Accessor) -> Result<Vec<f32>, String> {
+        if input.dimensions() != Dimensions::Scalar || input.data_type() != DataType::F32 {
+            return Err(format!(
+                "input accessor {} is not a float SCALAR",
+                input.index()
+            ));
+        }
+        let times: Vec<f32> = read_elements(input, self.buffers, |b| {
+            f32::from_le_bytes([b[0], b[1], b[2], b[3]])
+        })?;
+        if times.iter().any(|t| !t.is_finite()) || times.windows(2).any(|w| w[1] < w[0]) {
+            return Err("key times are not finite and increasing".into());
+        }
+        Ok(times)
+    }
+
+    /// Meshes with morph targets, with the rest shape to displace; a mesh placed by several nodes
+    /// takes the first node's weights.
+    fn morphs(&mut self, morphed: &[(u32, u32, Vec<f32>)]) -> Vec<Morph> {
+        let mut out: Vec<Morph> = Vec::new();
+        for (mesh, node, weights) in morphed {
+            if out.iter().any(|m| m.mesh == *mesh) {
+                self.scene.warnings.push(format!(
+                    "mesh {mesh} with morph targets is placed by several nodes; it takes the first node's weights"
+                ));
+                continue;
+            }
+            let Some(targets) = self.morph_attrs.get(mesh) else {
+                continue;
+            };
+            let m = &self.scene.meshes[*mesh as usize];
+            let mut default_weights = weights.clone();
+            default_weights.resize(targets.len(), 0.0);
+            out.push(Morph {
+                mesh: *mesh,
+                node: *node,
+                default_weights,
+                targets: targets.clone(),
+                rest_positions: m.positions.clone(),
+                rest_normals: m.normals.clone(),
+            });
+        }
+        out
+    }
+
+    /// Skins of the skinned instances: joints, inverse bind matrices, and the mesh's rest shape with
+    /// its per-vertex joints and weights. A mesh skinned by two nodes is posed for the first only.
+    fn skins(&mut self, skinned: &[(u32, u32, usize)]) -> Result<Vec<Skin>, String> {
+        let mut out: Vec<Skin> = Vec::new();
+        for &(instance, mesh, skin_index) in skinned {
+            let Some((joints_v, weights)) = self.skin_attrs.get(&mesh) else {
+                self.scene.warnings.push(format!(
+                    "mesh {mesh}: node has a skin but the primitive has no JOINTS_0/WEIGHTS_0; drawn unskinned"
+                ));
+                continue;
+            };
+            if out.iter().any(|s| s.mesh == mesh) {
+                self.scene.warnings.push(format!(
+                    "mesh {mesh} is skinned by several nodes; posed for the first only"
+                ));
+                continue;
+            }
+            let skin = self
+                .doc
+                .skins()
+                .nth(skin_index)
+                .ok_or("skin out of range")?;
+            let label = format!("skin {skin_index}");
+            let joints: Vec<u32> = skin.joints().map(|n| n.index() as u32).collect();
+            let inverse_bind: Vec<Mat4> = match skin.inverse_bind_matrices() {
+                Some(acc) => {
+                    if acc.dimensions() != Dimensions::Mat4 || acc.data_type() != DataType::F32 {
+                        return Err(format!(
+                            "{label}: inverse bind matrices accessor {} is not a float MAT4",
+                            acc.index()
+                        ));
+                    }
+                    read_elements(&acc, self.buffers, |b| {
+                        Mat4::from_cols_array(&std::array::from_fn(|k| {
+                            f32::from_le_bytes([b[4 * k], b[4 * k + 1], b[4 * k + 2], b[4 * k + 3]])
+                        }))
+                    })
+                    .map_err(|e| format!("{label}: {e}"))?
+                }
+                None => vec![Mat4::IDENTITY; joints.len()],
+            };
+            if inverse_bind.len() < joints.len() {
+                return Err(format!(
+                    "{label}: {} inverse bind matrices for {} joints",
+                    inverse_bind.len(),
+                    joints.len()
+                ));
+            }
+            if let Some(bad) = joints_v
+                .iter()
+                .flatten()
+                .find(|&&j| j as usize >= joints.len())
+            {
+                return Err(format!(
+                    "mesh {mesh}: JOINTS_0 names joint {bad} but {label} has {}",
+                    joints.len()
+                ));
+            }
+            let m = &self.scene.meshes[mesh as usize];
+            out.push(Skin {
+                instance,
+                mesh,
+                joints,
+                inverse_bind,
+                vertex_joints: joints_v.clone(),
+                vertex_weights: weights.clone(),
+                rest_positions: m.positions.clone(),
+                rest_normals: m.normals.clone(),
+            });
+        }
+        Ok(out)
+    }
+
+    /// The channels of one animation on node translation, rotation and scale (morph weights are
+    /// skipped with a warning); the caller adds the node hierarchy.
+    fn animation(&mut self, anim: &gltf::Animation) -> Result<Animation, String> {
+        let label = match anim.name() {
+            Some(n) => format!("animation {} ('{n}')", anim.index()),
+            None => format!("animation {}", anim.index()),
+        };
+        let mut out = Animation {
+            name: anim.name().unwrap_or("").to_owned(),
+            ..Default::default()
+        };
+        for (ci, ch) in anim.channels().enumerate() {
+            let property = match ch.target().property() {
+                gltf::animation::Property::Translation => Property::Translation,
+                gltf::animation::Property::Rotation => Property::Rotation,
+                gltf::animation::Property::Scale => Property::Scale,
+                gltf::animation::Property::MorphTargetWeights => {
+                    let c = self
+                        .weight_channel(&ch)
+                        .map_err(|e| format!("{label}, channel {ci}: {e}"))?;
+                    out.weights.extend(c);
+                    continue;
+                }
+            };
+            let at = |e: String| format!("{label}, channel {ci}: {e}");
+            let sampler = ch.sampler();
+            let interpolation = interpolation_of(sampler.interpolation());
+            let times = self.key_times(&sampler.input()).map_err(at)?;
+            let output = sampler.output();
+            let values: Vec<Vec4> = match property {
+                Property::Rotation => read_vec::<4>(&output, self.buffers, "rotation output")
+                    .map_err(at)?
+                    .into_iter()
+                    .map(Vec4::from)
+                    .collect(),
+                _ => read_vec::<3>(&output, self.buffers, "output")
+                    .map_err(at)?
+                    .into_iter()
+                    .map(|v| Vec3::from(v).extend(0.0))
+                    .collect(),
+            };
+            let per_key = if interpolation == Interpolation::CubicSpline {
+                3
+            } else {
+                1
+            };
+            if values.len() != per_key * times.len() {
+                return Err(at(format!(
+                    "{} output values for {} keys (expected {})",
+                    values.len(),
+                    times.len(),
+                    per_key * times.len()
+                )));
+            }
+            if values.iter().any(|v| !v.is_finite()) {
+                return Err(at("output values are not finite".into()));
+            }
+            if times.is_empty() {
+                continue;
+            }
+            out.channels.push(Channel {
+                node: ch.target().node().index() as u32,
+                property,
+                interpolation,
+                times,
+                values,
+            });
+        }
+        Ok(out)
     }
 
     fn light(&mut self, light: &gltf::khr_lights_punctual::Light, world: Mat4, label: &str) {
@@ -940,7 +1264,14 @@ impl Loader<'_> {
         let out = match built {
             Some(m) => {
                 self.scene.meshes.push(m);
-                Some((self.scene.meshes.len() - 1) as u32)
+                let index = (self.scene.meshes.len() - 1) as u32;
+                if let Some(attrs) = self.pending_skin.take() {
+                    self.skin_attrs.insert(index, attrs);
+                }
+                if let Some(targets) = self.pending_morph.take() {
+                    self.morph_attrs.insert(index, targets);
+                }
+                Some(index)
             }
             None => None,
         };
@@ -1050,7 +1381,58 @@ impl Loader<'_> {
             indices,
             material,
         };
-        self.dropped += clean_mesh(&mut m);
+        let (dropped, kept) = clean_mesh_order(&mut m);
+        self.dropped += dropped;
+        self.pending_skin = None;
+        if let (Some(j), Some(w)) = (
+            prim.get(&gltf::Semantic::Joints(0)),
+            prim.get(&gltf::Semantic::Weights(0)),
+        ) {
+            let joints = read_vec::<4>(&j, self.buffers, "JOINTS_0")?;
+            let weights = read_vec::<4>(&w, self.buffers, "WEIGHTS_0")?;
+            check_len("JOINTS_0", joints.len())?;
+            check_len("WEIGHTS_0", weights.len())?;
+            let pick = |k: usize| kept.as_ref().map_or(k, |o| o[k]);
+            let joints: Vec<[u16; 4]> = (0..m.positions.len())
+                .map(|k| joints[pick(k)].map(|x| x.clamp(0.0, u16::MAX as f32) as u16))
+                .collect();
+            let weights: Vec<Vec4> = (0..m.positions.len())
+                .map(|k| Vec4::from(weights[pick(k)]))
+                .collect();
+            self.pending_skin = Some((joints, weights));
+        }
+        self.pending_morph = None;
+        if prim.morph_targets().len() > 0 {
+            let pick = |k: usize| kept.as_ref().map_or(k, |o| o[k]);
+            let mut targets = Vec::new();
+            for (ti, target) in prim.morph_targets().enumerate() {
+                let what = format!("morph target {ti}");
+                let read = |acc: Option<gltf::Accessor>| -> Result<Vec<Vec3>, String> {
+                    match acc {
+                        Some(a) => {
+                            let v = read_vec::<3>(&a, self.buffers, &what)?;
+                            check_len(&what, v.len())?;
+                            Ok((0..m.positions.len())
+                                .map(|k| Vec3::from(v[pick(k)]))
+                                .collect())
+                        }
+                        None => Ok(Vec::new()),
+                    }
+                };
+                let dp = read(target.positions())?;
+                let dn = read(target.normals())?;
+                let dp = if dp.is_empty() {
+                    vec![Vec3::ZERO; m.positions.len()]
+                } else {
+                    dp
+                };
+                if dp.iter().chain(&dn).any(|d| !d.is_finite()) {
+                    return Err(format!("{what}: displacements are not finite"));
+                }
+                targets.push((dp, dn));
+            }
+            self.pending_morph = Some(targets);
+        }
         if m.indices.is_empty() {
             self.scene
                 .warnings
@@ -1066,6 +1448,13 @@ impl Loader<'_> {
 /// attributes, and computes area-weighted normals where the file has none (or unusable ones).
 /// Returns the number of triangles dropped.
 pub(crate) fn clean_mesh(m: &mut Mesh) -> usize {
+    clean_mesh_order(m).0
+}
+
+/// `clean_mesh`, also returning which original vertex each kept vertex is (None when all are kept in
+/// place), so that attributes the mesh does not hold (skin weights) can follow.
+fn clean_mesh_order(m: &mut Mesh) -> (usize, Option<Vec<usize>>) {
+    let mut kept = None;
     let before = m.indices.len();
     let nv = m.positions.len();
     let pos = &m.positions;
@@ -1121,6 +1510,7 @@ pub(crate) fn clean_mesh(m: &mut Mesh) -> usize {
                 *k = remap[*k as usize];
             }
         }
+        kept = Some(order);
     }
 
     let n = m.positions.len();
@@ -1167,7 +1557,7 @@ pub(crate) fn clean_mesh(m: &mut Mesh) -> usize {
             }
         }
     }
-    dropped
+    (dropped, kept)
 }
 
 #[cfg(test)]
@@ -1240,6 +1630,60 @@ mod tests {
     }
 
     const TRI: [[f32; 3]; 3] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+
+    #[test]
+    fn morph_target_weights_are_animated_and_posed() {
+        // A triangle, one target lifting it by z = 1, weights keyed 0 -> 1 over a second.
+        let floats: Vec<f32> = TRI
+            .iter()
+            .flatten()
+            .copied()
+            .chain([0.0, 0.0, 1.0].repeat(3))
+            .chain([0.0, 1.0, 0.0, 1.0])
+            .collect();
+        let data: Vec<u8> = floats.iter().flat_map(|f| f.to_le_bytes()).collect();
+        let json = format!(
+            r#"{{
+  "asset": {{"version": "2.0"}},
+  "buffers": [{{"byteLength": {len}, "uri": "data:application/octet-stream;base64,{b64}"}}],
+  "bufferViews": [{{"buffer": 0, "byteLength": {len}}}],
+  "accessors": [
+    {{"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 3, "type": "VEC3"}},
+    {{"bufferView": 0, "byteOffset": 36, "componentType": 5126, "count": 3, "type": "VEC3"}},
+    {{"bufferView": 0, "byteOffset": 72, "componentType": 5126, "count": 2, "type": "SCALAR"}},
+    {{"bufferView": 0, "byteOffset": 80, "componentType": 5126, "count": 2, "type": "SCALAR"}}
+  ],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "targets": [{{"POSITION": 1}}]}}],
+              "weights": [0.25]}}],
+  "nodes": [{{"mesh": 0}}],
+  "scenes": [{{"nodes": [0]}}],
+  "animations": [{{"channels": [{{"sampler": 0, "target": {{"node": 0, "path": "weights"}}}}],
+                   "samplers": [{{"input": 2, "output": 3}}]}}]
+}}"#,
+            len = data.len(),
+            b64 = base64(&data),
+        );
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("m.gltf");
+        std::fs::write(&p, json).unwrap();
+        let scene = Scene::load(&p).unwrap();
+        assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+        let z_at = |t: f32| {
+            let mut s = scene.clone();
+            super::super::animation::pose(&mut s, t, [0.0, 0.0]);
+            s.meshes[0]
+                .positions
+                .iter()
+                .map(|p| p.z)
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(z_at(0.5), vec![0.5; 3]);
+        assert_eq!(z_at(7.0), vec![1.0; 3]);
+        // Unposed, the mesh is the file's base shape.
+        assert!(scene.meshes[0].positions.iter().all(|p| p.z == 0.0));
+        let a = scene.animation.as_ref().unwrap();
+        assert_eq!(a.morphs[0].default_weights, vec![0.25]);
+    }
 
     #[test]
     fn one_mesh_two_nodes_is_one_mesh_two_instances() {

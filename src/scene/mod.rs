@@ -1,6 +1,7 @@
 //! One in-memory `Scene` that every loader fills: meshes, instances, materials, textures, lights, cameras.
 //! Loaders (`gltf`, `obj`) produce it; accelerators and the integrator only read it.
 
+pub mod animation;
 pub mod defaults;
 pub mod desc;
 pub mod envmap;
@@ -17,6 +18,7 @@ use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 
 use crate::csg::CsgObject;
 use crate::geometry::{Aabb, Hit, Ray};
+pub use animation::{Animation, Motion};
 pub use envmap::EnvMap;
 pub use error::LoadError;
 pub use texture::{Texture, Wrap};
@@ -67,6 +69,9 @@ pub struct Instance {
     pub to_world: Mat4,
     /// Transforms normals to world space (inverse transpose of the linear part).
     pub normal_to_world: Mat3,
+    /// Transforms over the shutter when the instance moves (then `to_world` is the one at time 0);
+    /// moving instances are traced apart from the static world-space triangles.
+    pub motion: Option<Motion>,
 }
 
 impl Instance {
@@ -76,6 +81,16 @@ impl Instance {
             mesh,
             to_world,
             normal_to_world,
+            motion: None,
+        }
+    }
+
+    /// Object to world at normalised shutter time `time`.
+    #[inline]
+    pub fn to_world_at(&self, time: f32) -> Mat4 {
+        match &self.motion {
+            Some(m) => m.at(time),
+            None => self.to_world,
         }
     }
 
@@ -382,6 +397,34 @@ pub struct Camera {
     /// Camera to world; the camera looks down its -Z with +Y up (glTF convention).
     pub to_world: Mat4,
     pub projection: Projection,
+    /// A thin lens for depth of field; None is a pinhole.
+    pub lens: Option<Lens>,
+    /// Camera to world over the shutter when the camera moves (`to_world` is the one at time 0).
+    pub motion: Option<Motion>,
+}
+
+/// A thin lens: rays leave a disk of `radius` (scene units) and meet on the plane `focus_distance`
+/// in front of the camera, where everything is sharp.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lens {
+    pub radius: f32,
+    pub focus_distance: f32,
+}
+
+/// Sensor height that `--fstop` assumes to turn the vertical field of view into a focal length:
+/// 24 mm (full frame), with scene units in metres.
+pub const SENSOR_HEIGHT_M: f32 = 0.024;
+
+impl Lens {
+    /// The lens of f-number `fstop` for a camera of vertical field of view `yfov` on a full-frame
+    /// sensor: focal length f = (h / 2) / tan(yfov / 2), aperture radius f / (2 N).
+    pub fn from_fstop(fstop: f32, yfov: f32, focus_distance: f32) -> Self {
+        let focal = 0.5 * SENSOR_HEIGHT_M / (0.5 * yfov).tan();
+        Self {
+            radius: focal / (2.0 * fstop),
+            focus_distance,
+        }
+    }
 }
 
 impl Camera {
@@ -390,6 +433,8 @@ impl Camera {
             name: "look-at".into(),
             to_world: Mat4::look_at_rh(eye, target, up).inverse(),
             projection: Projection::Perspective { yfov, aspect: None },
+            lens: None,
+            motion: None,
         }
     }
 
@@ -425,6 +470,8 @@ pub struct Scene {
     /// Constructive-solid-geometry objects, hit as `Hit::csg` (see `geometry::Hit`).
     pub csg: Vec<CsgObject>,
     pub stats: SceneStats,
+    /// The file's animation (the first, or the one chosen when loading); `animation::pose` applies it.
+    pub animation: Option<Animation>,
     /// Non-fatal problems met while loading (skipped primitives, dropped triangles), one line each.
     pub warnings: Vec<String>,
     /// Render settings from a scene file (empty for model files).
@@ -432,8 +479,15 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// Loads a .gltf, .glb, .obj or .toml (scene) file, chosen by extension.
+    /// Loads a .gltf, .glb, .obj or .toml (scene) file, chosen by extension (with a glTF file's first
+    /// animation).
     pub fn load(path: &Path) -> Result<Scene, LoadError> {
+        Self::load_with_animation(path, 0)
+    }
+
+    /// Loads a file keeping animation `animation` of a glTF file (an error when it has animations but
+    /// not that one).
+    pub fn load_with_animation(path: &Path, animation: usize) -> Result<Scene, LoadError> {
         let ext = path
             .extension()
             .and_then(|e| e.to_str())
@@ -443,7 +497,7 @@ impl Scene {
             return Err(LoadError::new(path, "no such file"));
         }
         let mut scene = match ext.as_str() {
-            "gltf" | "glb" => gltf::load(path)?,
+            "gltf" | "glb" => gltf::load(path, animation)?,
             "obj" => obj::load(path)?,
             "toml" => desc::load(path)?,
             _ => {
@@ -561,11 +615,11 @@ impl Scene {
     /// World-space bounds of every instance and CSG object.
     pub fn bounds(&self) -> Aabb {
         let meshes = self.instances.iter().fold(Aabb::EMPTY, |b, inst| {
-            b.union(
-                self.meshes[inst.mesh as usize]
-                    .bounds()
-                    .transformed(&inst.to_world),
-            )
+            let object = self.meshes[inst.mesh as usize].bounds();
+            b.union(match &inst.motion {
+                Some(m) => m.bounds(&object),
+                None => object.transformed(&inst.to_world),
+            })
         });
         self.csg.iter().fold(meshes, |b, c| b.union(c.bounds()))
     }
@@ -576,9 +630,20 @@ impl Scene {
             let s = self.csg[object as usize].surface(surface, ray.at(hit.t));
             return (s.p, s.n);
         }
-        let [a, b, c] = self.world_triangle(hit.inst, hit.prim);
+        // Where the instance is at the ray's time (moving instances differ from `world_triangle`).
+        let m = self.instances[hit.inst as usize].to_world_at(ray.time);
+        let [a, b, c] = self
+            .mesh_of(hit.inst)
+            .triangle(hit.prim)
+            .map(|p| m.transform_point3(p));
         let p = a * (1.0 - hit.u - hit.v) + b * hit.u + c * hit.v;
         (p, (b - a).cross(c - a).normalize_or_zero())
+    }
+
+    /// Whether anything moves during the shutter (instances or cameras with `Motion`).
+    pub fn has_motion(&self) -> bool {
+        self.instances.iter().any(|i| i.motion.is_some())
+            || self.cameras.iter().any(|c| c.motion.is_some())
     }
 
     pub fn triangle_count(&self) -> usize {

@@ -212,7 +212,9 @@ impl LightSet {
         for (i, inst) in scene.instances.iter().enumerate() {
             let mesh = &scene.meshes[inst.mesh as usize];
             let mat = &scene.materials[mesh.material as usize];
-            if !mat.is_emissive() {
+            // A moving emitter is reached by BSDF sampling only: light samples on it would be
+            // taken where it is at time 0, not at the ray's time.
+            if !mat.is_emissive() || inst.motion.is_some() {
                 continue;
             }
             first_triangle[i] = entries.len() as u32;

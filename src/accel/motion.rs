@@ -1,0 +1,187 @@
+//! Moving instances for the Rust backends: each gets its own object-space BVH and bounds over the
+//! shutter; a ray is moved into object space by the inverse of the instance's transform at its time.
+//!
+//! The transform at a time is the linear interpolation of the instance's `Motion` steps, exactly as
+//! Embree interpolates an instance's time steps, so every backend sees an object in the same place.
+//! Static instances never come here: they stay in the backends' flat world-space structures, and a
+//! backend over a scene without motion holds no `MovingSet` at all. The backends call it after their
+//! own traversal with the closest static hit so far (the same shape of call that CSG objects take).
+
+use std::sync::Arc;
+
+use super::bvh::Bvh;
+use super::flat::TriId;
+use super::Accel;
+use crate::geometry::{gamma, Aabb, Hit, Ray};
+use crate::scene::Scene;
+
+/// One moving instance: its bounds over the whole shutter and its triangles in object space.
+struct Moving {
+    inst: u32,
+    bounds: Aabb,
+    bvh: Bvh,
+}
+
+/// Every moving instance of a scene (a flat list tested box by box: scenes have few moving objects).
+pub struct MovingSet {
+    items: Vec<Moving>,
+}
+
+impl MovingSet {
+    /// The moving instances of `scene`, or None when nothing moves.
+    pub fn build(scene: &Arc<Scene>) -> Option<Self> {
+        let items: Vec<Moving> = scene
+            .instances
+            .iter()
+            .enumerate()
+            .filter_map(|(i, inst)| {
+                let motion = inst.motion.as_ref()?;
+                let mesh = &scene.meshes[inst.mesh as usize];
+                let alpha = scene.materials[mesh.material as usize].needs_alpha_test();
+                let tris: Vec<_> = (0..mesh.indices.len() as u32)
+                    .map(|p| mesh.triangle(p))
+                    .collect();
+                let ids = (0..mesh.indices.len() as u32)
+                    .map(|p| TriId::new(i as u32, p, alpha))
+                    .collect();
+                Some(Moving {
+                    inst: i as u32,
+                    bounds: motion.bounds(&mesh.bounds()),
+                    bvh: Bvh::from_triangles(Arc::clone(scene), tris, ids),
+                })
+            })
+            .collect();
+        (!items.is_empty()).then_some(Self { items })
+    }
+
+    /// Number of moving instances.
+    pub fn len(&self) -> usize {
+        self.items.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.items.is_empty()
+    }
+
+    /// Bytes held by the per-instance structures.
+    pub fn memory_bytes(&self) -> usize {
+        self.items.iter().map(|m| m.bvh.memory_bytes()).sum()
+    }
+
+    /// The closer of `best` (the backend's own hit) and the closest hit on a moving instance; with
+    /// `any`, the first hit found.
+    pub fn intersect(&self, scene: &Scene, ray: &Ray, best: Option<Hit>, any: bool) -> Option<Hit> {
+        if any && best.is_some() {
+            return best;
+        }
+        let mut best = best;
+        for m in &self.items {
+            let t_max = best.map_or(ray.t_max, |h| h.t);
+            if !hits_box(&m.bounds, ray, t_max) {
+                continue;
+            }
+            let to_world = scene.instances[m.inst as usize].to_world_at(ray.time);
+            let inv = to_world.inverse();
+            // Same parameter t in both spaces: the direction is transformed, not renormalised.
+            let local = Ray {
+                o: inv.transform_point3(ray.o),
+                d: inv.transform_vector3(ray.d),
+                t_max,
+                ..*ray
+            };
+            if let Some(h) = m.bvh.traverse_object(&local, any) {
+                best = Some(h);
+                if any {
+                    break;
+                }
+            }
+        }
+        best
+    }
+}
+
+/// Whether the ray's segment `(t_min, t_max)` touches the box (conservative slab test; an axis the
+/// ray runs parallel to only checks that the origin is within the slab).
+fn hits_box(b: &Aabb, ray: &Ray, t_max: f32) -> bool {
+    let (mut enter, mut exit) = (ray.t_min, t_max);
+    for axis in 0..3 {
+        let (o, d) = (ray.o[axis], ray.d[axis]);
+        if d == 0.0 {
+            if o < b.min[axis] || o > b.max[axis] {
+                return false;
+            }
+            continue;
+        }
+        let inv = 1.0 / d;
+        let (t0, t1) = ((b.min[axis] - o) * inv, (b.max[axis] - o) * inv);
+        let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
+        enter = enter.max(near);
+        exit = exit.min(far * (1.0 + 2.0 * gamma(3)));
+    }
+    enter <= exit
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{generate, Instance, Motion};
+    use glam::{Mat4, Vec3};
+
+    #[test]
+    fn a_moving_box_is_hit_where_it_is_at_the_ray_time() {
+        let mesh = generate::box_mesh(Vec3::splat(-0.5), Vec3::splat(0.5));
+        let mut inst = Instance::new(0, Mat4::IDENTITY);
+        inst.motion = Some(Motion {
+            steps: vec![
+                Mat4::IDENTITY,
+                Mat4::from_translation(Vec3::new(4.0, 0.0, 0.0)),
+            ],
+        });
+        let scene = Arc::new(generate::scene_of(vec![mesh], vec![inst]));
+        let set = MovingSet::build(&scene).unwrap();
+        for (time, x, hit) in [
+            (0.0, 0.0, true),
+            (0.0, 2.0, false),
+            (0.5, 2.0, true),
+            (1.0, 4.3, true),
+            (1.0, 0.0, false),
+        ] {
+            let ray = Ray::new(Vec3::new(x, 0.0, 5.0), -Vec3::Z).with_time(time);
+            let h = set.intersect(&scene, &ray, None, false);
+            assert_eq!(h.is_some(), hit, "time {time}, x {x}");
+            if let Some(h) = h {
+                assert!((h.t - 4.5).abs() < 1e-5, "{}", h.t);
+            }
+            assert_eq!(set.intersect(&scene, &ray, None, true).is_some(), hit);
+        }
+    }
+
+    #[test]
+    fn box_test_keeps_rays_along_a_face() {
+        let b = Aabb {
+            min: Vec3::ZERO,
+            max: Vec3::ONE,
+        };
+        // Parallel to x and z, exactly on the y = 0 face: inside the slab, so kept.
+        assert!(hits_box(
+            &b,
+            &Ray::new(Vec3::new(-1.0, 0.0, 0.5), Vec3::X),
+            f32::INFINITY
+        ));
+        assert!(!hits_box(
+            &b,
+            &Ray::new(Vec3::new(-1.0, -0.01, 0.5), Vec3::X),
+            f32::INFINITY
+        ));
+        assert!(!hits_box(
+            &b,
+            &Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::X),
+            0.5
+        ));
+        assert!(hits_box(
+            &b,
+            &Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::X),
+            1.5
+        ));
+    }
+}
