@@ -412,7 +412,7 @@ impl Motion {
 }
 
 /// Relative tolerance of motion sampling: a fraction of the object's bounding-box diagonal.
-const MOTION_TOLERANCE: f32 = 1e-3;
+pub const MOTION_TOLERANCE: f32 = 1e-3;
 
 /// Poses the scene's animation at `frame_time` seconds and gives every instance and camera that moves
 /// during `shutter` (seconds relative to the frame time) its `Motion`. Ray time `u` in [0, 1] is

@@ -54,6 +54,18 @@ struct Desc {
     material: Vec<Spanned<MaterialDesc>>,
     #[serde(default)]
     light: Vec<Spanned<LightDesc>>,
+    #[serde(default)]
+    object: Vec<Spanned<ObjectDesc>>,
+}
+
+/// A CSG object: a tree of analytic primitives (and closed meshes of the assets, by name).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ObjectDesc {
+    csg: crate::csg::spec::NodeSpec,
+    material: Option<String>,
+    #[serde(default)]
+    transform: TransformSpec,
 }
 
 #[derive(Debug, Deserialize)]
@@ -66,6 +78,15 @@ struct CameraDesc {
     /// Vertical field of view, degrees.
     #[serde(default = "fov")]
     fov: f32,
+    /// Thin lens: aperture radius (scene units) or f-number (24 mm sensor), focused at
+    /// `focus_distance` (default: the distance to `look_at`).
+    aperture: Option<f32>,
+    fstop: Option<f32>,
+    focus_distance: Option<f32>,
+    /// Shutter interval in seconds relative to `frame_time` (seconds into the assets' animations).
+    shutter: Option<[f32; 2]>,
+    #[serde(default)]
+    frame_time: f32,
 }
 
 fn up() -> [f32; 3] {
@@ -82,6 +103,8 @@ struct AssetDesc {
     path: Spanned<PathBuf>,
     #[serde(default)]
     transform: TransformSpec,
+    /// Where the asset is when the shutter closes (it moves linearly from `transform`).
+    transform_end: Option<TransformSpec>,
     /// One scene-file material for every mesh of the asset.
     material: Option<Spanned<String>>,
     /// The asset's own material names mapped to scene-file materials.
@@ -299,6 +322,17 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
         LoadError::new(path, format!("line {line}: {msg}"))
     };
     let dir = path.parent().unwrap_or(Path::new(""));
+    let (shutter, frame_time) = desc.camera.as_ref().map_or(([0.0; 2], 0.0), |c| {
+        (c.shutter.unwrap_or([0.0; 2]), c.frame_time)
+    });
+    if !(shutter[0] <= shutter[1] && shutter[0].is_finite() && shutter[1].is_finite())
+        || !frame_time.is_finite()
+    {
+        return Err(LoadError::new(
+            path,
+            "[camera]: shutter must be [open, close] with open <= close, frame_time finite",
+        ));
+    }
 
     let mut scene = Scene::default();
     let mut named: HashMap<String, u32> = HashMap::new();
@@ -350,7 +384,20 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
                 format!("asset '{}': transform {why}", rel.display()),
             ));
         }
-        let to_world = a.transform.to_mat4();
+        let start = a.transform.to_mat4();
+        let end = match &a.transform_end {
+            Some(t) => match t.problem() {
+                Some(why) => {
+                    return Err(at(
+                        a.path.span(),
+                        format!("asset '{}': transform_end {why}", rel.display()),
+                    ))
+                }
+                None => t.to_mat4(),
+            },
+            None => start,
+        };
+        super::animation::pose(&mut asset, frame_time, shutter);
         // Overrides replace the asset's materials before they join the scene's list.
         let all = a.material.as_ref().map(&lookup).transpose()?;
         let mut remap: HashMap<usize, u32> = HashMap::new();
@@ -372,9 +419,10 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
         for w in asset.warnings.drain(..) {
             scene.warnings.push(format!("{}: {w}", rel.display()));
         }
-        scene.append(asset, to_world, &remap);
+        scene.append(asset, &remap, |u| blend(start, end, u));
     }
 
+    add_objects(&mut scene, &desc.object, &named, &at)?;
     for l in &desc.light {
         let light = l
             .get_ref()
@@ -392,6 +440,34 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
         }
         let mut cam = Camera::look_at(eye, target, Vec3::from(c.up), c.fov.to_radians());
         cam.name = "scene file".into();
+        let focus = c.focus_distance.unwrap_or((target - eye).length());
+        let radius = match (c.aperture, c.fstop) {
+            (Some(_), Some(_)) => Some(Err("give aperture or fstop, not both")),
+            (Some(a), None) => Some(Ok(a)),
+            (None, Some(n)) if n > 0.0 => {
+                Some(Ok(
+                    super::Lens::from_fstop(n, c.fov.to_radians(), focus).radius
+                ))
+            }
+            (None, Some(_)) => Some(Err("fstop must be positive")),
+            (None, None) => None,
+        };
+        match radius {
+            Some(Err(e)) => return Err(LoadError::new(path, format!("[camera]: {e}"))),
+            Some(Ok(r)) if !(r >= 0.0 && r.is_finite() && focus > 0.0 && focus.is_finite()) => {
+                return Err(LoadError::new(
+                    path,
+                    "[camera]: aperture and focus_distance must be positive and finite",
+                ))
+            }
+            Some(Ok(r)) if r > 0.0 => {
+                cam.lens = Some(super::Lens {
+                    radius: r,
+                    focus_distance: focus,
+                })
+            }
+            _ => {}
+        }
         scene.cameras.insert(0, cam);
     }
     scene.settings = desc.render;
@@ -403,6 +479,91 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
         scene.materials.push(Material::default());
     }
     Ok(scene)
+}
+
+/// The placement a fraction `u` of the way from `a` to `b`: scale, rotation (slerp) and translation
+/// interpolated apart, so a turning asset keeps its size.
+fn blend(a: glam::Mat4, b: glam::Mat4, u: f32) -> glam::Mat4 {
+    if a == b {
+        return a;
+    }
+    let (sa, ra, ta) = a.to_scale_rotation_translation();
+    let (sb, rb, tb) = b.to_scale_rotation_translation();
+    glam::Mat4::from_scale_rotation_translation(sa.lerp(sb, u), ra.slerp(rb, u), ta.lerp(tb, u))
+}
+
+/// Resolves the CSG objects into the scene. A mesh named as an operand (`mesh = "name"`) is taken where
+/// its asset placed it, and its instances leave the scene: the object shows it, cut.
+fn add_objects(
+    scene: &mut Scene,
+    objects: &[Spanned<ObjectDesc>],
+    named: &HashMap<String, u32>,
+    at: &dyn Fn(Range<usize>, String) -> LoadError,
+) -> Result<(), LoadError> {
+    use std::sync::Arc;
+    let mut used: Vec<u32> = Vec::new();
+    let mut solids: HashMap<String, Arc<crate::csg::SolidMesh>> = HashMap::new();
+    for o in objects {
+        let desc = o.get_ref();
+        let fail = |e: String| at(o.span(), format!("object: {e}"));
+        if let Some(why) = desc.transform.problem() {
+            return Err(fail(format!("transform {why}")));
+        }
+        let default = match &desc.material {
+            Some(m) => *named
+                .get(m)
+                .ok_or_else(|| fail(format!("no material named '{m}'")))?,
+            None => {
+                if scene.materials.is_empty() {
+                    scene.materials.push(Material::default());
+                }
+                0
+            }
+        };
+        // Meshes are looked up (and made solid) before resolving, which only reads them.
+        for name in mesh_names(&desc.csg) {
+            if solids.contains_key(&name) {
+                continue;
+            }
+            let Some(k) = scene.meshes.iter().position(|m| m.name == name) else {
+                return Err(fail(format!("no mesh named '{name}' in the assets")));
+            };
+            let mut mesh = scene.meshes[k].clone();
+            if let Some(inst) = scene.instances.iter().find(|i| i.mesh as usize == k) {
+                for p in &mut mesh.positions {
+                    *p = inst.to_world.transform_point3(*p);
+                }
+            }
+            let solid = crate::csg::SolidMesh::new(&mesh)
+                .map_err(|e| fail(format!("mesh '{name}': {e}")))?;
+            solids.insert(name, Arc::new(solid));
+            used.push(k as u32);
+        }
+        let root = desc
+            .csg
+            .resolve_with(
+                &|n| named.get(n).copied(),
+                &|n| solids.get(n).cloned(),
+                default,
+            )
+            .map_err(fail)?;
+        let object = crate::csg::CsgObject::new(root, desc.transform.to_mat4()).map_err(fail)?;
+        scene.csg.push(object);
+    }
+    scene.instances.retain(|i| !used.contains(&i.mesh));
+    Ok(())
+}
+
+/// The names of the meshes a CSG tree uses as operands.
+fn mesh_names(node: &crate::csg::spec::NodeSpec) -> Vec<String> {
+    use crate::csg::spec::KindSpec;
+    match &node.kind {
+        KindSpec::Mesh(name) => vec![name.clone()],
+        KindSpec::Union(k) | KindSpec::Intersection(k) | KindSpec::Difference(k) => {
+            k.iter().flat_map(mesh_names).collect()
+        }
+        _ => Vec::new(),
+    }
 }
 
 impl LightDesc {
@@ -682,5 +843,76 @@ strength = 4
         );
         let e = load(&bad).unwrap_err().to_string();
         assert!(e.contains("line 1") && e.contains("normal"), "{e}");
+    }
+
+    #[test]
+    fn moving_assets_lens_and_csg_objects() {
+        let dir = tempfile::tempdir().unwrap();
+        // A closed tetrahedron, to be cut by a box.
+        write(
+            dir.path(),
+            "tet.obj",
+            "o tet\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+        );
+        write(
+            dir.path(),
+            "t.obj",
+            "o tri\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+        );
+        let p = write(
+            dir.path(),
+            "s.toml",
+            r#"
+[[material]]
+name = "red"
+base_color = [1, 0, 0]
+
+[[asset]]
+path = "t.obj"
+transform = { translate = [0, 0, 0] }
+transform_end = { translate = [2, 0, 0] }
+
+[[asset]]
+path = "tet.obj"
+
+[[object]]
+csg = { difference = [ { mesh = "tet" }, { box = { min = [0.5, -1, -1], max = [2, 2, 2] } } ] }
+material = "red"
+
+[[object]]
+csg = { sphere = { center = [0, 0, 0], radius = 0.5 } }
+transform = { translate = [0, 3, 0] }
+
+[camera]
+position = [0, 0, 5]
+look_at = [0, 0, 0]
+aperture = 0.1
+shutter = [0, 0.5]
+"#,
+        );
+        let s = load(&p).unwrap();
+        // The moving triangle: at shutter close it has moved by (2, 0, 0).
+        let m = s.instances[0].motion.as_ref().expect("the asset moves");
+        let end = m.at(1.0).transform_point3(Vec3::ZERO);
+        assert!((end - Vec3::new(2.0, 0.0, 0.0)).length() < 1e-4, "{end}");
+        // The tetrahedron became a CSG operand: its own instance left the scene.
+        assert_eq!(s.instances.len(), 1);
+        assert_eq!(s.csg.len(), 2);
+        let lens = s.cameras[0].lens.expect("aperture gives a lens");
+        assert!((lens.radius - 0.1).abs() < 1e-6 && (lens.focus_distance - 5.0).abs() < 1e-5);
+        // A ray along x at y = z = 0.1 enters the cut tetrahedron at x = 0 and leaves at the cut.
+        let ray = crate::geometry::Ray::new(Vec3::new(-1.0, 0.1, 0.1), Vec3::X);
+        let (t, _) = s.csg[0].intersect(&ray).expect("hits the cut tetrahedron");
+        assert!((t - 1.0).abs() < 1e-4, "{t}");
+        let back = crate::geometry::Ray::new(Vec3::new(3.0, 0.1, 0.1), -Vec3::X);
+        let (t, _) = s.csg[0].intersect(&back).expect("hits the cut face");
+        assert!((t - 2.5).abs() < 1e-4, "{t}");
+        let bad = write(
+            dir.path(),
+            "b.toml",
+            "[[object]]\ncsg = { mesh = \"nothing\" }\n",
+        );
+        let e = load(&bad).unwrap_err().to_string();
+        assert!(e.contains("line 1") && e.contains("nothing"), "{e}");
     }
 }

@@ -546,15 +546,18 @@ impl Scene {
         Ok(())
     }
 
-    /// Moves everything of `other` into this scene, placed by `to_world`; its material `i` becomes
-    /// this scene's `remap[i]` where given, and a copy otherwise.
+    /// Moves everything of `other` into this scene, placed by `placement` (normalised shutter time
+    /// to transform; lights and cameras where it is at time 0); its material `i` becomes this
+    /// scene's `remap[i]` where given, and a copy otherwise.
     pub fn append(
         &mut self,
         other: Scene,
-        to_world: Mat4,
         remap: &std::collections::HashMap<usize, u32>,
+        placement: impl Fn(f32) -> Mat4,
     ) {
+        let to_world = placement(0.0);
         let (mesh0, tex0) = (self.meshes.len() as u32, self.textures.len() as u32);
+        self.append_instances(&other, mesh0, &placement);
         let mut material_index = Vec::with_capacity(other.materials.len());
         for (i, mut m) in other.materials.into_iter().enumerate() {
             if let Some(&k) = remap.get(&i) {
@@ -572,12 +575,6 @@ impl Scene {
             m.material = material_index[m.material as usize];
             m
         }));
-        self.instances.extend(
-            other
-                .instances
-                .iter()
-                .map(|i| Instance::new(i.mesh + mesh0, to_world * i.to_world)),
-        );
         self.lights
             .extend(other.lights.iter().map(|l| l.transformed(&to_world)));
         self.cameras.extend(other.cameras.into_iter().map(|mut c| {
@@ -590,6 +587,21 @@ impl Scene {
         s.primitives += o.primitives;
         s.textures += o.textures;
         s.animations += o.animations;
+    }
+
+    /// Adds `other`'s instances (meshes numbered from `mesh0`) placed by `placement` (normalised
+    /// shutter time to transform); an instance moves when it or its placement does.
+    pub fn append_instances(&mut self, other: &Scene, mesh0: u32, placement: impl Fn(f32) -> Mat4) {
+        let placement_moves = placement(0.0) != placement(1.0);
+        for i in &other.instances {
+            let mut inst = Instance::new(i.mesh + mesh0, placement(0.0) * i.to_world_at(0.0));
+            if placement_moves || i.motion.is_some() {
+                let object = other.meshes[i.mesh as usize].bounds();
+                let tol = animation::MOTION_TOLERANCE * object.extent().length().max(1e-6);
+                inst.motion = Motion::sample(|u| placement(u) * i.to_world_at(u), &object, tol);
+            }
+            self.instances.push(inst);
+        }
     }
 
     pub fn mesh_of(&self, inst: u32) -> &Mesh {
