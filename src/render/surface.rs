@@ -87,25 +87,7 @@ impl SurfaceInteraction {
         }
         let n = valid_reflection_normal(n, ng, -ray.d);
 
-        let base = scene.base_color(mat, uv);
-        let (mut metallic, mut roughness) = (mat.metallic, mat.roughness);
-        if let Some(mr) = tex(scene, mat.metallic_roughness_tex, uv) {
-            roughness *= mr.y;
-            metallic *= mr.z;
-        }
-        let transmission = match tex(scene, mat.transmission_tex, uv) {
-            Some(t) => mat.transmission * t.x,
-            None => mat.transmission,
-        };
-        let mut bsdf = Bsdf::new(
-            Frame::from_normal(n),
-            base.xyz(),
-            metallic,
-            roughness,
-            mat.specular,
-        )
-        .with_dielectric(transmission, mat.ior, mat.is_thin_walled(), entering);
-        bsdf.absorption = mat.absorption();
+        let bsdf = material_bsdf(scene, mat, uv, n, entering);
         Self {
             p,
             ng,
@@ -127,23 +109,43 @@ impl SurfaceInteraction {
         let mat = &scene.materials[s.material as usize];
         let ng = if s.n.dot(ray.d) > 0.0 { -s.n } else { s.n };
         let uv = Vec2::ZERO;
-        let base = scene.base_color(mat, uv);
+        // The primitive's normal points out of the solid (subtracted surfaces flipped).
+        let entering = s.n.dot(ray.d) < 0.0;
         Self {
             p: s.p,
             ng,
             uv,
-            bsdf: Bsdf::new(
-                Frame::from_normal(ng),
-                base.xyz(),
-                mat.metallic,
-                mat.roughness,
-                mat.specular,
-            ),
+            bsdf: material_bsdf(scene, mat, uv, ng, entering),
             emission: emission(scene, mat, uv),
             inst: hit.inst,
             prim: hit.prim,
         }
     }
+}
+
+/// The material's BSDF at a texture coordinate around shading normal `n`; `entering` says whether the
+/// ray arrives from outside (for the IOR ratio and absorption of transmissive solids).
+fn material_bsdf(scene: &Scene, mat: &Material, uv: Vec2, n: Vec3, entering: bool) -> Bsdf {
+    let base = scene.base_color(mat, uv);
+    let (mut metallic, mut roughness) = (mat.metallic, mat.roughness);
+    if let Some(mr) = tex(scene, mat.metallic_roughness_tex, uv) {
+        roughness *= mr.y;
+        metallic *= mr.z;
+    }
+    let transmission = match tex(scene, mat.transmission_tex, uv) {
+        Some(t) => mat.transmission * t.x,
+        None => mat.transmission,
+    };
+    let mut bsdf = Bsdf::new(
+        Frame::from_normal(n),
+        base.xyz(),
+        metallic,
+        roughness,
+        mat.specular,
+    )
+    .with_dielectric(transmission, mat.ior, mat.is_thin_walled(), entering);
+    bsdf.absorption = mat.absorption();
+    bsdf
 }
 
 /// Smallest margin above the geometric surface for the mirror direction of `wo` about the shading normal.

@@ -135,6 +135,14 @@ struct MaterialDesc {
     transmission: f32,
     #[serde(default = "ior")]
     ior: f32,
+    /// Above 0 the transmissive material is a solid that refracts (KHR_materials_volume); 0 is a
+    /// thin wall that light passes straight through.
+    #[serde(default)]
+    thickness: f32,
+    #[serde(default = "white")]
+    attenuation_color: [f32; 3],
+    /// Distance at which light inside keeps `attenuation_color` of itself (default: no absorption).
+    attenuation_distance: Option<f32>,
     #[serde(default)]
     double_sided: bool,
 }
@@ -170,6 +178,9 @@ impl MaterialDesc {
             specular: self.specular,
             transmission: self.transmission,
             ior: self.ior,
+            thickness: self.thickness,
+            attenuation_color: self.attenuation_color.into(),
+            attenuation_distance: self.attenuation_distance.unwrap_or(f32::INFINITY),
             ..Material::default()
         }
     }
@@ -192,6 +203,19 @@ impl MaterialDesc {
         }
         if !(self.ior >= 1.0 && self.ior.is_finite()) {
             return Some(("ior", "must be at least 1"));
+        }
+        if !(self.thickness >= 0.0 && self.thickness.is_finite()) {
+            return Some(("thickness", "must be finite and not negative"));
+        }
+        if !self.attenuation_color.iter().all(|&c| unit(c))
+            || self
+                .attenuation_distance
+                .is_some_and(|d| d.is_nan() || d <= 0.0)
+        {
+            return Some((
+                "attenuation_color/attenuation_distance",
+                "must lie in [0, 1] / be positive",
+            ));
         }
         let e = Vec3::from(self.emissive) * self.emissive_strength;
         if !(e.is_finite() && e.min_element() >= 0.0) {
