@@ -300,3 +300,60 @@ fn env_maps_light_renders_and_bad_ones_are_named() {
         assert!(stderr(&o).contains(name), "{}", stderr(&o));
     }
 }
+
+#[test]
+fn verbose_lists_skipped_features_and_the_bench_times_forcing_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("v.png");
+    let args = ["--width", "24", "--height", "18", "--spp", "2"];
+    let demo = demo();
+    let mut render = vec!["render", &demo, "-o", out.to_str().unwrap(), "--verbose"];
+    render.extend(args);
+    let o = glint(&render);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // The demo is static, seen through a pinhole, opaque, and has no CSG.
+    let lists = |o: &Output| -> (String, String) {
+        let text = stderr(o);
+        let line = text
+            .lines()
+            .find(|l| l.contains("uses: "))
+            .unwrap_or_else(|| {
+                panic!("no feature list in {text}");
+            });
+        let (uses, skips) = line.split_once("; skips: ").expect("uses; skips");
+        (
+            uses.split_once("uses: ").unwrap().1.to_string(),
+            skips.to_string(),
+        )
+    };
+    let (uses, skips) = lists(&o);
+    for f in ["motion", "lens", "transmission", "CSG"] {
+        assert!(
+            skips.contains(f) && !uses.contains(f),
+            "{f}: {uses} / {skips}"
+        );
+    }
+    render.push("--aperture");
+    render.push("0.05");
+    let o = glint(&render);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (uses, skips) = lists(&o);
+    assert!(
+        uses.contains("lens") && !skips.contains("lens"),
+        "{uses} / {skips}"
+    );
+
+    let mut bench = vec!["bench", "features", "icosphere:2", "--repeat", "1"];
+    bench.extend(args);
+    let o = glint(&bench);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let table = String::from_utf8_lossy(&o.stdout).into_owned();
+    // Rows end in the image difference; forcing the machinery on changes sampling at most, so the
+    // images stay close.
+    let diffs: Vec<f64> = table
+        .lines()
+        .filter_map(|l| l.split_whitespace().last()?.parse().ok())
+        .collect();
+    assert_eq!(diffs.len(), 5, "{table}");
+    assert!(diffs.iter().all(|d| *d < 0.05), "{table}");
+}

@@ -20,6 +20,26 @@ pub enum BenchCommand {
     /// How many ray/triangle tests cheap per-object tests (bounding sphere, box, nearest-first
     /// order) save over brute force, on the same primary, shadow and diffuse rays.
     FastFailure(FastFailureArgs),
+    /// What skipping unused features saves: a static, pinhole, opaque scene rendered as derived and
+    /// with motion, lens and thin-wall machinery forced on (the same image).
+    Features(FeaturesArgs),
+}
+
+#[derive(clap::Args, Debug)]
+pub struct FeaturesArgs {
+    /// A .gltf, .glb, .obj or .toml file, or `icosphere:N`.
+    pub input: String,
+    #[arg(long, default_value_t = 320)]
+    pub width: usize,
+    #[arg(long, default_value_t = 240)]
+    pub height: usize,
+    #[arg(long, default_value_t = 16)]
+    pub spp: u32,
+    #[arg(long, default_value_t = Backend::default_available())]
+    pub backend: Backend,
+    /// Timed repetitions per variant (the best is reported).
+    #[arg(long, default_value_t = 3)]
+    pub repeat: usize,
 }
 
 #[derive(clap::Args, Debug)]
@@ -151,6 +171,17 @@ pub fn run(cmd: BenchCommand) -> Result<()> {
             let rows = fastfail::run(&a.input, a.width.max(1), a.height.max(1), a.rays)?;
             let objects = rays::load_input(&a.input)?.instances.len();
             super::print_out(&fastfail::table(&a.input, objects, &rows))
+        }
+        BenchCommand::Features(a) => {
+            use crate::bench::features;
+            let settings = crate::render::RenderSettings {
+                width: a.width.clamp(1, 8192),
+                height: a.height.clamp(1, 8192),
+                spp: a.spp.clamp(1, 1 << 16),
+                ..Default::default()
+            };
+            let (f, rows) = features::run(&a.input, a.backend, &settings, a.repeat)?;
+            super::print_out(&features::table(&a.input, &f, &rows))
         }
         BenchCommand::Rays(a) => {
             let config = RaysConfig {

@@ -173,6 +173,9 @@ pub struct RenderArgs {
     /// No progress bar or summary line.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Print the features the scene uses and the ones glint skips for it.
+    #[arg(short, long)]
+    pub verbose: bool,
     /// Sample generator: random, stratified or sobol (Owen-scrambled).
     #[arg(long, value_enum, default_value_t = crate::sample::SamplerKind::default())]
     pub sampler: crate::sample::SamplerKind,
@@ -628,12 +631,20 @@ fn render_command(mut args: RenderArgs) -> Result<()> {
     let t1 = Instant::now();
     let accel = accel::build(scene.clone(), args.image.backend)?;
     let build_s = t1.elapsed().as_secs_f64();
-    camera.lens = args.lens.lens(
-        &scene,
-        accel.as_ref(),
-        &camera,
-        (args.image.width, args.image.height),
-    )?;
+    // Lens flags replace the camera's own lens (a scene file's); without them it stays.
+    let l = &args.lens;
+    if l.aperture.is_some()
+        || l.fstop.is_some()
+        || l.focus_distance.is_some()
+        || l.focus_on.is_some()
+    {
+        camera.lens = l.lens(
+            &scene,
+            accel.as_ref(),
+            &camera,
+            (args.image.width, args.image.height),
+        )?;
+    }
 
     let progress = progress_bar(
         args.quiet,
@@ -660,6 +671,10 @@ fn render_command(mut args: RenderArgs) -> Result<()> {
         shutter,
         frame_time: args.time.frame_time,
     };
+    if args.verbose {
+        let features = crate::scene::features::Features::of(&scene, &camera);
+        eprintln!("{}: {}", args.input.display(), features.describe());
+    }
     let out = render::render_full(&scene, accel.as_ref(), &camera, &settings, &progress);
     let (image, stats) = (&out.image, out.stats);
     film::write(image, &args.output, args.exposure)?;

@@ -9,6 +9,7 @@ use super::surface::SurfaceInteraction;
 use crate::accel::Accel;
 use crate::geometry::Ray;
 use crate::sample::{Dim, Sampler};
+use crate::scene::features::Features;
 use crate::scene::Scene;
 
 /// Bounce from which Russian roulette may end paths.
@@ -46,16 +47,19 @@ fn power_heuristic(a: f32, b: f32) -> f32 {
 }
 
 impl<'a> Integrator<'a> {
-    pub fn new(scene: &'a Scene, accel: &'a dyn Accel, max_depth: u32) -> Self {
+    /// The integrator for `scene`, with the shadow-ray path its `features` need.
+    pub fn new(
+        scene: &'a Scene,
+        accel: &'a dyn Accel,
+        max_depth: u32,
+        features: &Features,
+    ) -> Self {
         Self {
             scene,
             accel,
             lights: LightSet::new(scene),
             max_depth,
-            thin_shadows: scene
-                .materials
-                .iter()
-                .any(|m| m.is_transmissive() && m.is_thin_walled()),
+            thin_shadows: features.thin_walls,
         }
     }
 

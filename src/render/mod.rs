@@ -22,6 +22,7 @@ use crate::accel::Accel;
 use crate::film::filter::{Filter, FilterKind};
 use crate::film::Image;
 use crate::sample::{AnySampler, Dim, Sampler, SamplerKind};
+use crate::scene::features::Features;
 use crate::scene::{Camera, Scene};
 
 /// Tile edge in pixels: small enough to balance load, big enough to amortise per-tile setup.
@@ -388,9 +389,12 @@ pub fn render_full(
         (AdaptiveMode::Off, Some(_)) => 16,
         _ => first,
     };
+    // Decided once: a static scene never draws a time, a pinhole never a lens position (RayCamera),
+    // an opaque scene's shadow rays are plain occlusion queries (Integrator).
+    let features = Features::of(scene, camera);
     let ctx = Ctx {
-        integrator: Integrator::new(scene, accel, settings.max_depth),
-        cam: RayCamera::new(camera, w, h).with_time(scene.has_motion()),
+        integrator: Integrator::new(scene, accel, settings.max_depth, &features),
+        cam: RayCamera::new(camera, w, h).with_time(features.motion),
         filter: Filter::new(settings.filter, settings.filter_radius),
         settings,
         pass,

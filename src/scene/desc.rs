@@ -349,9 +349,11 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
     let (shutter, frame_time) = desc.camera.as_ref().map_or(([0.0; 2], 0.0), |c| {
         (c.shutter.unwrap_or([0.0; 2]), c.frame_time)
     });
-    if !(shutter[0] <= shutter[1] && shutter[0].is_finite() && shutter[1].is_finite())
-        || !frame_time.is_finite()
-    {
+    let valid = shutter[0] <= shutter[1]
+        && shutter[0].is_finite()
+        && shutter[1].is_finite()
+        && frame_time.is_finite();
+    if !valid {
         return Err(LoadError::new(
             path,
             "[camera]: shutter must be [open, close] with open <= close, frame_time finite",

@@ -6,6 +6,7 @@ pub mod defaults;
 pub mod desc;
 pub mod envmap;
 pub mod error;
+pub mod features;
 pub mod generate;
 pub mod gltf;
 pub mod obj;

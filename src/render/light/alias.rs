@@ -17,7 +17,8 @@ impl AliasTable {
     pub fn new(weights: &[f32]) -> Self {
         let n = weights.len();
         let total: f64 = weights.iter().map(|&w| w.max(0.0) as f64).sum();
-        if n == 0 || !(total > 0.0) || !total.is_finite() {
+        // `total` is a sum of non-negative values, so it is positive, zero or NaN/inf.
+        if n == 0 || total <= 0.0 || !total.is_finite() {
             return Self {
                 keep: vec![0.0; n],
                 alias: (0..n as u32).collect(),
