@@ -193,6 +193,26 @@ fn cli_writes_the_spp_map_and_honours_a_time_budget() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let spp = glint::film::read_exr(&map).unwrap();
     assert!(spp.pixels.iter().all(|p| p.x >= 4.0 && p.x <= 32.0));
+    // `--aov spp` puts the same map beside the output.
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_glint"))
+        .args(["render", demo().to_str().unwrap(), "-o"])
+        .arg(dir.path().join("b.exr"))
+        .args([
+            "--width",
+            "32",
+            "--height",
+            "24",
+            "--adaptive",
+            "--min-spp",
+            "4",
+        ])
+        .args(["--max-spp", "32", "--target-error", "0.05", "--aov", "spp"])
+        .args(["--sampler", "stratified", "--filter", "tent"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let beside = glint::film::read_exr(&dir.path().join("b.spp.exr")).unwrap();
+    assert_eq!(beside.pixels, spp.pixels);
     let png = dir.path().join("t.png");
     let o = std::process::Command::new(env!("CARGO_BIN_EXE_glint"))
         .args(["render", demo().to_str().unwrap(), "-o"])

@@ -34,7 +34,8 @@ pub struct ConvergenceConfig {
     pub ladder: Vec<u32>,
     pub ref_spp: u32,
     pub samplers: Vec<SamplerKind>,
-    /// Targets (relative RMS error per pixel) of the variance-adaptive runs (Sobol).
+    /// Targets (the image's relative RMS error) of the variance-adaptive runs (Sobol); empty: the
+    /// errors uniform Sobol (or the first sampler) reached at `adaptive_min_spp` and more.
     pub adaptive_targets: Vec<f32>,
     pub adaptive_min_spp: u32,
     pub adaptive_max_spp: u32,
@@ -63,7 +64,7 @@ impl Default for ConvergenceConfig {
                 SamplerKind::Stratified,
                 SamplerKind::Sobol,
             ],
-            adaptive_targets: vec![0.4, 0.2, 0.1, 0.05, 0.025],
+            adaptive_targets: Vec::new(),
             adaptive_min_spp: 16,
             adaptive_max_spp: 1024,
             corner_targets: vec![0.8, 0.4, 0.2, 0.1, 0.05],
@@ -214,7 +215,7 @@ pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool)
     }
 
     let mut runs = Vec::new();
-    let mut measure = |mode: String, param: f64, s: &RenderSettings| {
+    let measure = |mode: String, param: f64, s: &RenderSettings| -> Run {
         let out = render::render_full(&scene, accel.as_ref(), &camera, s, &hidden);
         // Per pixel: squared error less the reference's estimated variance, absolute and relative.
         let (mut abs, mut rel) = (Vec::new(), Vec::new());
@@ -252,7 +253,7 @@ pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool)
                 run.rel_mse_trim
             );
         }
-        runs.push(run);
+        run
     };
     for &sampler in &cfg.samplers {
         for &spp in &cfg.ladder {
@@ -261,10 +262,29 @@ pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool)
                 sampler,
                 ..base.clone()
             };
-            measure(sampler.to_string(), spp as f64, &s);
+            runs.push(measure(sampler.to_string(), spp as f64, &s));
         }
     }
-    for &t in &cfg.adaptive_targets {
+    // By default the adaptive runs (Sobol) aim at the errors uniform Sobol (or else the first
+    // sampler) reached from the adaptive minimum up, so their curve spans the same range whatever
+    // the scene's noise.
+    let uniform = match cfg.samplers.iter().find(|&&k| k == SamplerKind::Sobol) {
+        Some(k) => Some(k),
+        None => cfg.samplers.first(),
+    }
+    .map(|k| k.to_string());
+    let derived: Vec<f32> = runs
+        .iter()
+        .filter(|r| Some(&r.mode) == uniform.as_ref())
+        .filter(|r| r.param >= cfg.adaptive_min_spp as f64 && r.rel_mse > 0.0)
+        .map(|r| r.rel_mse.sqrt() as f32)
+        .collect();
+    let targets = if cfg.adaptive_targets.is_empty() {
+        &derived
+    } else {
+        &cfg.adaptive_targets
+    };
+    for &t in targets {
         let s = RenderSettings {
             sampler: SamplerKind::Sobol,
             adaptive: AdaptiveMode::Variance,
@@ -273,7 +293,7 @@ pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool)
             max_spp: cfg.adaptive_max_spp,
             ..base.clone()
         };
-        measure("adaptive-variance".into(), short(t), &s);
+        runs.push(measure("adaptive-variance".into(), short(t), &s));
     }
     for &t in &cfg.corner_targets {
         let s = RenderSettings {
@@ -284,7 +304,7 @@ pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool)
             max_spp: cfg.corner_max_spp,
             ..base.clone()
         };
-        measure("adaptive-corners".into(), short(t), &s);
+        runs.push(measure("adaptive-corners".into(), short(t), &s));
     }
 
     let summary = summarise(&runs);

@@ -81,8 +81,9 @@ pub struct ConvergenceArgs {
     /// Samplers of the uniform ladders, comma separated.
     #[arg(long, value_delimiter = ',', default_values_t = [crate::sample::SamplerKind::Random, crate::sample::SamplerKind::Stratified, crate::sample::SamplerKind::Sobol])]
     pub samplers: Vec<crate::sample::SamplerKind>,
-    /// Targets of the variance-adaptive runs (relative RMS error per pixel), comma separated.
-    #[arg(long, value_delimiter = ',', default_values_t = [0.4f32, 0.2, 0.1, 0.05, 0.025])]
+    /// Targets of the variance-adaptive runs (the image's relative RMS error), comma separated
+    /// (default: the errors uniform sobol reached from --adaptive-min-spp spp up).
+    #[arg(long, value_delimiter = ',')]
     pub adaptive_targets: Vec<f32>,
     /// Fewest samples a pixel of an adaptive run takes.
     #[arg(long, default_value_t = 16)]

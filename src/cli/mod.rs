@@ -185,14 +185,15 @@ pub struct RenderArgs {
     /// Filter radius in pixels (default: box 0.5, tent 1, gaussian 1.5, mitchell 2).
     #[arg(long)]
     pub filter_radius: Option<f32>,
-    /// Adaptive sampling: pixels stop once their estimated relative error is under --target-error.
+    /// Adaptive sampling: rounds until the image's estimated relative RMS error is under
+    /// --target-error, samples going where they cut the error most per ray; converged pixels stop.
     #[arg(long)]
     pub adaptive: bool,
     /// Adaptive method: variance (error from half buffers, in rounds) or corners (Whitted-style
     /// subdivision where corner samples differ); implies --adaptive.
     #[arg(long, value_enum)]
     pub adaptive_mode: Option<render::AdaptiveMode>,
-    /// Adaptive threshold: relative RMS error per pixel (variance) or corner contrast (corners).
+    /// Adaptive threshold: the image's relative RMS error (variance) or corner contrast (corners).
     #[arg(long, default_value_t = 0.01)]
     pub target_error: f32,
     /// Fewest samples an adaptive pixel takes.
@@ -207,6 +208,10 @@ pub struct RenderArgs {
     /// Also write the samples each pixel took (.exr: counts; .png: counts / the most).
     #[arg(long)]
     pub spp_map: Option<PathBuf>,
+    /// Extra images beside the output, comma separated: `spp` writes OUTPUT's name with `.spp`
+    /// before the extension (what --spp-map FILE writes elsewhere).
+    #[arg(long, value_enum, value_delimiter = ',')]
+    pub aov: Vec<Aov>,
     #[command(flatten)]
     pub lens: LensArgs,
     #[command(flatten)]
@@ -580,9 +585,26 @@ fn env_light(path: &std::path::Path, args: &RenderArgs) -> Result<Light> {
     })
 }
 
+/// Per-pixel images a render can write beside its output.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Aov {
+    /// Samples each pixel took.
+    Spp,
+}
+
+/// `out.exr` -> `out.spp.exr`: an AOV's file beside the output, in the output's format.
+fn aov_path(output: &std::path::Path, aov: &str) -> PathBuf {
+    let stem = output.file_stem().unwrap_or_default().to_string_lossy();
+    let ext = output.extension().unwrap_or_default().to_string_lossy();
+    output.with_file_name(format!("{stem}.{aov}.{ext}"))
+}
+
 fn render_command(mut args: RenderArgs) -> Result<()> {
     // Fail on a bad output name before spending time on the render.
     film::Format::from_path(&args.output)?;
+    if args.aov.contains(&Aov::Spp) && args.spp_map.is_none() {
+        args.spp_map = Some(aov_path(&args.output, "spp"));
+    }
     if let Some(map) = &args.spp_map {
         film::Format::from_path(map)?;
     }

@@ -162,6 +162,8 @@ struct Acc {
     half: DVec4,
     half_w: f64,
     n: u32,
+    /// Rays its samples traced (their cost, for the adaptive allocation).
+    rays: u64,
 }
 
 impl Acc {
@@ -236,6 +238,7 @@ impl Ctx<'_> {
             }
         }
         acc.n = acc.n.max(to);
+        acc.rays += rays;
         rays
     }
 
@@ -378,7 +381,6 @@ pub fn render_full(
     let (w, h) = (settings.width, settings.height);
     let adaptive = settings.adaptive;
     let min_spp = settings.min_spp.max(1);
-    let max_spp = settings.max_spp.max(min_spp);
     // Samples per stratified pass: what the first round takes.
     let first = match (adaptive, settings.time_budget) {
         (AdaptiveMode::Variance, _) => min_spp,
@@ -459,24 +461,8 @@ pub fn render_full(
         }
         let mut next: Vec<u32> = match adaptive {
             AdaptiveMode::Variance => {
-                let err = error_map(&tiles, w, h);
-                let t2 = (settings.target_error as f64).powi(2);
-                counts
-                    .iter()
-                    .zip(&err)
-                    .map(|(&n, &e)| {
-                        if n < min_spp {
-                            min_spp
-                        } else if n < max_spp && e > t2 {
-                            // Error falls as 1/sqrt(n): aim at the samples that reach the
-                            // target, between +25% (few rounds) and doubling (little overshoot).
-                            let want = (n as f64 * e / t2).ceil() as u32;
-                            want.clamp(n + n.div_ceil(4), 2 * n).min(max_spp)
-                        } else {
-                            n
-                        }
-                    })
-                    .collect()
+                let cost = ray_cost_map(&tiles, w, h);
+                plan_variance_round(&counts, &error_map(&tiles, w, h), &cost, settings)
             }
             _ => match settings.time_budget {
                 Some(_) => counts.iter().map(|&n| 2 * n).collect(),
@@ -553,4 +539,108 @@ fn error_map(tiles: &[Tile], w: usize, h: usize) -> Vec<f64> {
             s / n as f64
         })
         .collect()
+}
+
+/// Rays per sample of each pixel so far (at least 1): the cost of one more sample there.
+fn ray_cost_map(tiles: &[Tile], w: usize, h: usize) -> Vec<f64> {
+    let mut c = vec![1.0f64; w * h];
+    for t in tiles {
+        let tw = t.x1 - t.x0;
+        for (k, a) in t.px.iter().enumerate() {
+            c[(t.y0 + k / tw) * w + t.x0 + k % tw] = (a.rays as f64 / a.n.max(1) as f64).max(1.0);
+        }
+    }
+    c
+}
+
+/// The variance-adaptive plan for the next round: the samples each pixel should have, given the
+/// samples `n` it has, its squared relative error estimate `e` and its cost in rays per sample.
+///
+/// The goal is the image's mean squared relative error at `target_error^2` for the least time. With
+/// per-sample variance `v = e n` and cost `c`, that is Neyman's allocation `n ∝ sqrt(v / c)`
+/// (minimise `sum c n` subject to `mean(v / n) = t^2`). Giving every pixel the samples that bring it
+/// to the target on its own costs as much as uniform sampling does whenever costs are equal, and
+/// more when the noisy pixels are also the expensive ones (an object in front of a cheap
+/// background), so it is not used. A pixel stops once its own error is under the target or it
+/// has `max_spp`; none stops below `min_spp`; each round at most doubles a pixel's samples, since
+/// early estimates are rough. All pixels stay put once the image's estimate meets the target.
+fn plan_variance_round(n: &[u32], e: &[f64], cost: &[f64], s: &RenderSettings) -> Vec<u32> {
+    let (min_spp, max_spp) = (s.min_spp.max(1), s.max_spp.max(s.min_spp.max(1)));
+    let t2 = (s.target_error as f64).powi(2);
+    let pixels = n.len().max(1) as f64;
+    let image_err = e.iter().sum::<f64>() / pixels;
+    let scale = n
+        .iter()
+        .zip(e)
+        .zip(cost)
+        .map(|((&n, &e), &c)| (e * n as f64 * c).sqrt())
+        .sum::<f64>()
+        / (pixels * t2);
+    n.iter()
+        .zip(e)
+        .zip(cost)
+        .map(|((&n, &e), &c)| {
+            if n < min_spp {
+                min_spp
+            } else if image_err <= t2 || n >= max_spp || e <= t2 {
+                n
+            } else {
+                let want = ((e * n as f64 / c).sqrt() * scale).ceil();
+                if want <= n as f64 {
+                    n
+                } else {
+                    // At least +25% (few rounds), at most doubling (little overshoot).
+                    (want as u32).clamp(n + n.div_ceil(4), 2 * n).min(max_spp)
+                }
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn settings(target_error: f32) -> RenderSettings {
+        RenderSettings {
+            target_error,
+            min_spp: 16,
+            max_spp: 1 << 20,
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn variance_rounds_follow_neyman_allocation() {
+        // Equal cost, per-sample variances v = e n of 1 : 4 : 16. Neyman wants samples
+        // n_i = sqrt(v_i) * sum sqrt(v) / (P t^2) = [k, 2k, 4k] with k = 7 v_0 / (3 t^2); equal
+        // per-pixel error would want 1 : 4 : 16. Choose t for k = 800.
+        let n = [1000; 3];
+        let e = [1e-6, 4e-6, 16e-6];
+        let t = (7.0 * 1e-3 / (3.0 * 800.0f64)).sqrt() as f32;
+        let plan = plan_variance_round(&n, &e, &[1.0; 3], &settings(t));
+        assert_eq!(plan[0], 1000, "wants 800, has more: {plan:?}");
+        assert!((1599..=1602).contains(&plan[1]), "wants 1600: {plan:?}");
+        assert_eq!(plan[2], 2000, "wants 3200, at most doubles: {plan:?}");
+        // Equal variance, four times the cost: half the samples (n ∝ 1 / sqrt(c)), wanted 2057
+        // and 1029, so the first doubles and the second takes the smallest step.
+        let plan = plan_variance_round(&[1000; 2], &[4e-6; 2], &[1.0, 4.0], &settings(t));
+        assert_eq!(plan, [2000, 1250]);
+    }
+
+    #[test]
+    fn variance_rounds_stop_at_the_target_and_respect_the_bounds() {
+        let s = settings(0.01);
+        // The image's error (mean 5e-5 < 1e-4) meets the target: nobody gets more.
+        let plan = plan_variance_round(&[32, 32], &[1e-6, 9.9e-5], &[1.0; 2], &s);
+        assert_eq!(plan, [32, 32]);
+        // Below the minimum always rises to it; a pixel under the target on its own stops; one
+        // at the maximum stops.
+        let s = RenderSettings { max_spp: 64, ..s };
+        let plan = plan_variance_round(&[8, 32, 64, 32], &[1.0, 1e-5, 1.0, 1.0], &[1.0; 4], &s);
+        assert_eq!(plan[0], 16);
+        assert_eq!(plan[1], 32);
+        assert_eq!(plan[2], 64);
+        assert!(plan[3] > 32 && plan[3] <= 64, "{plan:?}");
+    }
 }
