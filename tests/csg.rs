@@ -257,3 +257,66 @@ fn secondary_rays_leave_csg_surfaces_cleanly() {
         assert!(near <= leaving / 5000, "{backend}: {near} of {leaving}");
     }
 }
+
+/// A CSG box moving during the shutter leaves the streak its speed gives, in every backend (the
+/// Rust backends' object BVH holds its bounds over the shutter, Embree its bounds per time step).
+#[test]
+fn a_moving_csg_object_streaks_by_its_displacement() {
+    use glam::Vec4;
+    use glint::film::filter::FilterKind;
+    use glint::scene::{Material, Motion};
+    let (size, yfov, side, depth, shift) = (96usize, 0.5f32, 0.1f32, 3.0f32, 0.2f32);
+    let h = 0.5 * side;
+    let slab = Node::primitive(
+        Shape::Box {
+            min: Vec3::new(-h, -h, -0.005),
+            max: Vec3::new(h, h, 0.005),
+        },
+        0,
+    );
+    let start = Mat4::from_translation(Vec3::new(-0.5 * shift, 0.0, -depth));
+    let end = Mat4::from_translation(Vec3::new(0.5 * shift, 0.0, -depth));
+    let object = CsgObject::new(slab, start).unwrap().with_motion(Motion {
+        steps: vec![start, end],
+    });
+    let scene = Arc::new(Scene {
+        csg: vec![object],
+        materials: vec![Material {
+            base_color: Vec4::new(0.0, 0.0, 0.0, 1.0),
+            emissive: Vec3::ONE,
+            ..Default::default()
+        }],
+        ..Default::default()
+    });
+    assert!(scene.has_motion());
+    let camera = Camera::look_at(Vec3::ZERO, -Vec3::Z, Vec3::Y, yfov);
+    let settings = RenderSettings {
+        width: size,
+        height: size,
+        spp: 64,
+        max_depth: 0,
+        filter: FilterKind::Box,
+        seed: 3,
+        ..Default::default()
+    };
+    let ppt = 0.5 * size as f32 / (0.5 * yfov).tan();
+    let streak = (shift / depth * ppt) as f64;
+    let square = (side / depth * ppt) as f64;
+    let base = (square * square + 1.0) / 12.0;
+    for backend in backends() {
+        let img = common::render_with(&scene, &camera, backend, &settings);
+        let (mx, my, vx, vy) = common::moments(&img);
+        // A box of length `streak` convolved with the square and the pixel.
+        let measured = (12.0 * (vx - base)).max(0.0).sqrt();
+        eprintln!("{backend}: streak {streak:.3} px, measured {measured:.3} px");
+        assert!(
+            (measured - streak).abs() < 0.03 * streak,
+            "{backend}: {measured} vs {streak}"
+        );
+        assert!(
+            (mx - 48.0).abs() < 0.1 && (my - 48.0).abs() < 0.1,
+            "{backend}: {mx} {my}"
+        );
+        assert!((vy - base).abs() < 0.05, "{backend}: {vy} vs {base}");
+    }
+}

@@ -57,24 +57,6 @@ fn settings(spp: u32) -> RenderSettings {
     }
 }
 
-/// Centroid and variance (per axis, pixels^2) of the image's red channel, weighted by value.
-fn moments(img: &Image) -> (f64, f64, f64, f64) {
-    let (mut s, mut sx, mut sy, mut sxx, mut syy) = (0.0f64, 0.0, 0.0, 0.0, 0.0);
-    for y in 0..img.height {
-        for x in 0..img.width {
-            let w = img.get(x, y).x as f64;
-            let (fx, fy) = (x as f64 + 0.5, y as f64 + 0.5);
-            s += w;
-            sx += w * fx;
-            sy += w * fy;
-            sxx += w * fx * fx;
-            syy += w * fy * fy;
-        }
-    }
-    let (mx, my) = (sx / s, sy / s);
-    (mx, my, sxx / s - mx * mx, syy / s - my * my)
-}
-
 fn camera() -> Camera {
     Camera::look_at(Vec3::ZERO, -Vec3::Z, Vec3::Y, YFOV)
 }
@@ -97,7 +79,7 @@ fn defocus_blur_matches_the_thin_lens_circle_of_confusion() {
             focus_distance: focus,
         });
         let img = common::render_with(&scene, &cam, Backend::Bvh, &settings(64));
-        let (mx, my, vx, vy) = moments(&img);
+        let (mx, my, vx, vy) = common::moments(&img);
         // A uniform disk of radius R has E[r^2] = R^2 / 2; the square and the pixel (box) add
         // side^2 / 12 and 1/12 per axis.
         let coc = radius * (1.0 / focus - 1.0 / d).abs() * pixels_per_tan();
@@ -162,7 +144,7 @@ fn motion_blur_streak_is_speed_times_shutter() {
     assert!(scene.has_motion());
     assert_eq!(scene.instances[0].motion.as_ref().unwrap().steps.len(), 2);
     let img = common::render_with(&scene, &camera(), Backend::Bvh, &settings(64));
-    let (mx, my, vx, vy) = moments(&img);
+    let (mx, my, vx, vy) = common::moments(&img);
     let ppt = pixels_per_tan();
     // The streak: a box of length L = v s (screen) convolved with the square and the pixel.
     let streak = speed * shutter / depth * ppt;
@@ -200,7 +182,7 @@ fn a_moving_camera_streaks_a_still_object() {
         ],
     });
     let img = common::render_with(&scene, &cam, Backend::Bvh, &settings(64));
-    let (mx, _, vx, _) = moments(&img);
+    let (mx, _, vx, _) = common::moments(&img);
     let ppt = pixels_per_tan();
     let streak = shift / depth * ppt;
     let square = side / depth * ppt;

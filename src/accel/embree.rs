@@ -192,7 +192,7 @@ unsafe extern "C" fn csg_bounds(args: *const sys::RTCBoundsFunctionArguments) {
         let a = &*args;
         (a, &*(a.geometryUserPtr as *const CsgObject))
     };
-    let b = object.bounds();
+    let b = object.step_bounds(args.timeStep as usize);
     // SAFETY: `bounds_o` points to one RTCBounds for Embree to read.
     unsafe {
         *args.bounds_o = sys::RTCBounds {
@@ -473,6 +473,8 @@ impl EmbreeAccel {
                 let g = sys::rtcNewGeometry(self.device, sys::RTCGeometryType::USER);
                 if !g.is_null() {
                     sys::rtcSetGeometryUserPrimitiveCount(g, 1);
+                    // A moving object gets its bounds per time step; its callbacks read ray times.
+                    sys::rtcSetGeometryTimeStepCount(g, object.time_steps() as u32);
                     sys::rtcSetGeometryUserData(g, object as *const CsgObject as *mut c_void);
                     sys::rtcSetGeometryBoundsFunction(g, Some(csg_bounds), ptr::null_mut());
                     sys::rtcSetGeometryIntersectFunction(g, Some(csg_intersect));

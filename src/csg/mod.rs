@@ -14,6 +14,7 @@ use std::sync::Arc;
 use glam::{Affine3A, Mat3, Mat4, Vec3};
 
 use crate::geometry::{Aabb, Ray};
+use crate::scene::Motion;
 pub use mesh::SolidMesh;
 pub use shape::Shape;
 pub use spec::NodeSpec;
@@ -379,6 +380,18 @@ pub struct CsgObject {
     kids: Vec<u32>,
     /// Bits of a surface id that name the leaf.
     leaf_bits: u32,
+    /// Placements over the shutter when the object moves (absent for a still one).
+    motion: Option<Box<ObjectMotion>>,
+}
+
+/// A moving object is evaluated where it rests (at `to_world`): a ray at time `t` is carried there
+/// by `to_world * placement(t)^-1`, which keeps its parameter `t`, and the surface found is carried back.
+#[derive(Clone, Debug)]
+struct ObjectMotion {
+    placement: Motion,
+    /// Bounds over the whole shutter, and at each time step (for Embree's motion blur).
+    bounds: Aabb,
+    step_bounds: Vec<Aabb>,
 }
 
 /// The surface at a hit: world position (projected onto the primitive), unit normal (outward of
@@ -459,6 +472,7 @@ impl CsgObject {
             nodes: Vec::new(),
             kids: Vec::new(),
             leaf_bits: 0,
+            motion: None,
         };
         obj.flatten(&root, to_world)?;
         obj.leaf_bits = (usize::BITS - (obj.leaves.len().max(2) - 1).leading_zeros()).max(1);
@@ -584,9 +598,77 @@ impl CsgObject {
         self.nodes.len() - 1
     }
 
-    /// World-space bounds.
+    /// The object moving through `placement` (world placements over the normalised shutter, in
+    /// place of `to_world`); a placement that never differs from `to_world` leaves it still.
+    pub fn with_motion(mut self, placement: Motion) -> Self {
+        if placement.steps.iter().all(|m| *m == self.to_world) {
+            self.motion = None;
+            return self;
+        }
+        let rest = self.rest_bounds();
+        let from_rest = self.to_world.inverse();
+        let step_bounds: Vec<Aabb> = placement
+            .steps
+            .iter()
+            .map(|m| rest.transformed(&(*m * from_rest)))
+            .collect();
+        let bounds = step_bounds.iter().fold(Aabb::EMPTY, |b, s| b.union(*s));
+        self.motion = Some(Box::new(ObjectMotion {
+            placement,
+            bounds,
+            step_bounds,
+        }));
+        self
+    }
+
+    /// Whether the object moves during the shutter.
+    pub fn moves(&self) -> bool {
+        self.motion.is_some()
+    }
+
+    /// Evenly spaced time steps of the motion over the shutter (1 for a still object).
+    pub fn time_steps(&self) -> usize {
+        self.motion.as_ref().map_or(1, |m| m.step_bounds.len())
+    }
+
+    /// Bounds at time step `k` of `time_steps()`; between steps the object stays inside the linear
+    /// blend of its neighbours' bounds, as its placement is the linear blend of theirs.
+    pub fn step_bounds(&self, k: usize) -> Aabb {
+        match &self.motion {
+            Some(m) => m.step_bounds[k.min(m.step_bounds.len() - 1)],
+            None => self.bounds(),
+        }
+    }
+
+    /// World-space bounds (over the whole shutter for a moving object).
     pub fn bounds(&self) -> Aabb {
+        match &self.motion {
+            Some(m) => m.bounds,
+            None => self.rest_bounds(),
+        }
+    }
+
+    /// Bounds where the object rests, at `to_world`.
+    fn rest_bounds(&self) -> Aabb {
         self.nodes.last().map_or(Aabb::EMPTY, |n| n.bounds)
+    }
+
+    /// From the world at normalised shutter time `time` to where the object rests (None: still).
+    fn to_rest(&self, time: f32) -> Option<Mat4> {
+        let m = self.motion.as_ref()?;
+        Some(self.to_world * m.placement.at(time).inverse())
+    }
+
+    /// The ray carried to where the object rests (the same ray for a still object).
+    fn rest_ray(&self, ray: &Ray) -> Ray {
+        match self.to_rest(ray.time) {
+            None => *ray,
+            Some(m) => Ray {
+                o: m.transform_point3(ray.o),
+                d: m.transform_vector3(ray.d),
+                ..*ray
+            },
+        }
     }
 
     /// Materials of every primitive.
@@ -602,16 +684,16 @@ impl CsgObject {
             inv: ray.d.recip(),
             t_min: ray.t_min,
             t_max: ray.t_max,
-            scale: self.bounds().extent().length() / dl,
+            scale: self.rest_bounds().extent().length() / dl,
             closest,
         }
     }
 
     /// The ray's full interval list within its window (for tests and tools).
     pub fn intervals(&self, ray: &Ray) -> Intervals {
-        let q = self.query(ray, false);
+        let q = self.query(&self.rest_ray(ray), false);
         let mut out = Intervals::EMPTY;
-        if q.enters(&self.bounds()).is_some() {
+        if q.enters(&self.rest_bounds()).is_some() {
             self.eval(self.root_index() as u32, &q, &mut out);
         }
         out
@@ -619,8 +701,9 @@ impl CsgObject {
 
     /// The closest surface in `(ray.t_min, ray.t_max)`: distance and surface id.
     pub fn intersect(&self, ray: &Ray) -> Option<(f32, u32)> {
+        let ray = &self.rest_ray(ray);
         let q = self.query(ray, true);
-        q.enters(&self.bounds())?;
+        q.enters(&self.rest_bounds())?;
         let mut l = Intervals::EMPTY;
         self.eval(self.root_index() as u32, &q, &mut l);
         if let Some(h) = l.first_in(ray.t_min, ray.t_max) {
@@ -791,7 +874,24 @@ impl CsgObject {
         )
     }
 
-    pub fn surface(&self, id: u32, p: Vec3) -> CsgSurface {
+    /// The surface `id` at world point `p`, where the object is at normalised shutter time `time`.
+    pub fn surface(&self, id: u32, p: Vec3, time: f32) -> CsgSurface {
+        let Some(to_rest) = self.to_rest(time) else {
+            return self.rest_surface(id, p);
+        };
+        let s = self.rest_surface(id, to_rest.transform_point3(p));
+        // Back from rest: points by the inverse, normals by the inverse's inverse transpose.
+        CsgSurface {
+            p: to_rest.inverse().transform_point3(s.p),
+            n: Mat3::from_mat4(to_rest)
+                .transpose()
+                .mul_vec3(s.n)
+                .normalize_or(s.n),
+            material: s.material,
+        }
+    }
+
+    fn rest_surface(&self, id: u32, p: Vec3) -> CsgSurface {
         let (leaf, face, flipped) = self.split_surface(id);
         let Some(l) = self.leaves.get(leaf as usize) else {
             return CsgSurface {

@@ -223,7 +223,7 @@ fn lens_depth_matches_the_closed_form() {
                 let want = 5.0 + c - (r * r - rho2).sqrt();
                 let (t, s) = got.expect("inside the lens' rim");
                 worst = worst.max((t - want).abs());
-                let n = lens.surface(s, ray.at(t)).n;
+                let n = lens.surface(s, ray.at(t), 0.0).n;
                 let want_n = (ray.at(t) - Vec3::new(c, 0.0, 0.0)).normalize();
                 assert!(n.dot(want_n) > 0.9999, "{n} vs {want_n}");
                 // The thickness is the closed form too: 2 (sqrt(R^2 - rho^2) - c).
@@ -284,7 +284,7 @@ fn subtracted_surfaces_face_out_of_the_result() {
     let o = Vec3::new(0.8, 0.8, 5.0);
     let (t, s) = obj.intersect(&Ray::new(o, -Vec3::Z)).unwrap();
     assert!((t - 4.0).abs() < 1e-5);
-    let surf = obj.surface(s, o - Vec3::Z * t);
+    let surf = obj.surface(s, o - Vec3::Z * t, 0.0);
     assert_eq!((surf.n, surf.material), (Vec3::Z, 0));
     // ... then, inside the corner, the sphere's surface, with the normal towards the centre.
     let r = Ray {
@@ -294,7 +294,7 @@ fn subtracted_surfaces_face_out_of_the_result() {
     let (t2, s2) = obj.intersect(&r).unwrap();
     let p = r.at(t2);
     assert!((p.length() - 1.3).abs() < 1e-5);
-    let surf = obj.surface(s2, p);
+    let surf = obj.surface(s2, p, 0.0);
     assert!(surf.n.dot(-p.normalize()) > 0.9999);
     assert_eq!(surf.material, 1);
 }
@@ -366,7 +366,7 @@ fn tangent_rays_and_rays_from_inside() {
     let r = Ray::new(Vec3::ZERO, Vec3::new(0.3, 0.4, 0.5).normalize());
     let (t, s) = obj.intersect(&r).unwrap();
     assert!((t - 1.0).abs() < 1e-6);
-    assert!(obj.surface(s, r.at(t)).n.dot(r.d) > 0.9999);
+    assert!(obj.surface(s, r.at(t), 0.0).n.dot(r.d) > 0.9999);
 }
 
 /// Every primitive, placed with a rotation, non-uniform scale and a translation, near and far from
@@ -422,7 +422,7 @@ fn secondary_rays_do_not_rehit_their_surface() {
                         continue;
                     };
                     n_hits += 1;
-                    let surf = obj.surface(s, ray.at(t));
+                    let surf = obj.surface(s, ray.at(t), 0.0);
                     let n = surf.n;
                     assert!(n.dot(ray.d) < 0.0, "entering surfaces face the ray");
                     // Reflected: leaves outwards; a convex shape is never hit again.
@@ -572,8 +572,8 @@ fn closed_mesh_operand_matches_the_triangle_bvh_and_the_analytic_box() {
             (Some((tm, sm)), Some((ta, sa))) => {
                 assert!((tm - ta).abs() < 1e-5, "{tm} vs {ta}");
                 let (nm, na) = (
-                    meshed.surface(sm, ray.at(tm)),
-                    analytic.surface(sa, ray.at(ta)),
+                    meshed.surface(sm, ray.at(tm), 0.0),
+                    analytic.surface(sa, ray.at(ta), 0.0),
                 );
                 assert!(nm.n.dot(na.n) > 0.9999, "{} vs {}", nm.n, na.n);
                 assert_eq!(nm.material, na.material);
@@ -586,4 +586,51 @@ fn closed_mesh_operand_matches_the_triangle_bvh_and_the_analytic_box() {
     assert!(same > 1000, "{same}");
     // An open mesh has no inside.
     assert!(SolidMesh::new(&generate::quad_grid(2)).is_err());
+}
+
+#[test]
+fn a_moving_object_is_hit_where_it_is_at_the_ray_time() {
+    let ball = sphere(Vec3::ZERO, 1.0);
+    // Rests at x = 0, moves to x = 4 while also scaling by 2 (a placement, not just a shift).
+    let start = Mat4::IDENTITY;
+    let end = Mat4::from_translation(Vec3::X * 4.0) * Mat4::from_scale(Vec3::splat(2.0));
+    let obj = CsgObject::new(ball, start).unwrap().with_motion(Motion {
+        steps: vec![start, end],
+    });
+    assert!(obj.moves() && obj.time_steps() == 2);
+    let b = obj.bounds();
+    assert!(b.min.x <= -1.0 && b.max.x >= 6.0 && b.max.y >= 2.0, "{b:?}");
+    for time in [0.0f32, 0.25, 0.5, 1.0] {
+        // Centre and radius at `time`: the blend of the two placements.
+        let (c, r) = (Vec3::X * 4.0 * time, 1.0 + time);
+        let ray = Ray::new(Vec3::new(c.x + 0.3, 0.2, 10.0), -Vec3::Z).with_time(time);
+        let (t, s) = obj.intersect(&ray).expect("hits the moved sphere");
+        let z = (r * r - 0.3f32 * 0.3 - 0.2 * 0.2).sqrt();
+        assert!((t - (10.0 - z)).abs() < 1e-4, "time {time}: {t}");
+        let surf = obj.surface(s, ray.at(t), time);
+        assert!(
+            (surf.p - ray.at(t)).length() < 1e-4,
+            "time {time}: {}",
+            surf.p
+        );
+        let radial = (surf.p - c).normalize();
+        assert!(
+            surf.n.dot(radial) > 0.9999,
+            "time {time}: {} vs {radial}",
+            surf.n
+        );
+        // The same ray at the far end of the shutter misses.
+        let other = Ray {
+            time: if time < 0.5 { 1.0 } else { 0.0 },
+            ..ray
+        };
+        assert!(obj.intersect(&other).is_none(), "time {time}");
+    }
+    // A still placement is no motion.
+    let still = CsgObject::new(sphere(Vec3::ZERO, 1.0), start)
+        .unwrap()
+        .with_motion(Motion {
+            steps: vec![start; 3],
+        });
+    assert!(!still.moves());
 }

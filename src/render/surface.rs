@@ -105,7 +105,7 @@ impl SurfaceInteraction {
     /// safe as for a triangle's interpolated point), the primitive's normal (flipped where it was
     /// subtracted) as both geometric and shading normal, and the material of that surface; no UVs.
     pub fn from_csg(scene: &Scene, hit: &Hit, ray: &Ray, object: u32, surface: u32) -> Self {
-        let s = scene.csg[object as usize].surface(surface, ray.at(hit.t));
+        let s = scene.csg[object as usize].surface(surface, ray.at(hit.t), ray.time);
         let mat = &scene.materials[s.material as usize];
         let ng = if s.n.dot(ray.d) > 0.0 { -s.n } else { s.n };
         let uv = Vec2::ZERO;

@@ -66,6 +66,8 @@ struct ObjectDesc {
     material: Option<String>,
     #[serde(default)]
     transform: TransformSpec,
+    /// Where the object is when the shutter closes (it moves linearly from `transform`).
+    transform_end: Option<TransformSpec>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -573,7 +575,21 @@ fn add_objects(
                 default,
             )
             .map_err(fail)?;
-        let object = crate::csg::CsgObject::new(root, desc.transform.to_mat4()).map_err(fail)?;
+        let start = desc.transform.to_mat4();
+        let mut object = crate::csg::CsgObject::new(root, start).map_err(fail)?;
+        if let Some(end) = &desc.transform_end {
+            if let Some(why) = end.problem() {
+                return Err(fail(format!("transform_end {why}")));
+            }
+            // As assets move: scale, rotation and translation blended apart, at as many time steps
+            // as keep the linear interpolation within the motion tolerance.
+            let end = end.to_mat4();
+            let local = object.bounds().transformed(&start.inverse());
+            let tol = super::animation::MOTION_TOLERANCE * local.extent().length().max(1e-6);
+            if let Some(m) = super::Motion::sample(|u| blend(start, end, u), &local, tol) {
+                object = object.with_motion(m);
+            }
+        }
         scene.csg.push(object);
     }
     scene.instances.retain(|i| !used.contains(&i.mesh));
@@ -908,6 +924,7 @@ material = "red"
 [[object]]
 csg = { sphere = { center = [0, 0, 0], radius = 0.5 } }
 transform = { translate = [0, 3, 0] }
+transform_end = { translate = [1, 3, 0], rotate_y = 90 }
 
 [camera]
 position = [0, 0, 5]
@@ -924,6 +941,11 @@ shutter = [0, 0.5]
         // The tetrahedron became a CSG operand: its own instance left the scene.
         assert_eq!(s.instances.len(), 1);
         assert_eq!(s.csg.len(), 2);
+        // The moving sphere turns as it goes: more than two time steps; the cut tetrahedron stays.
+        assert!(!s.csg[0].moves() && s.csg[1].moves() && s.csg[1].time_steps() > 2);
+        let moved = crate::geometry::Ray::new(Vec3::new(1.0, 3.0, 5.0), -Vec3::Z).with_time(1.0);
+        assert!(s.csg[1].intersect(&moved).is_some());
+        assert!(s.csg[1].intersect(&moved.with_time(0.0)).is_none());
         let lens = s.cameras[0].lens.expect("aperture gives a lens");
         assert!((lens.radius - 0.1).abs() < 1e-6 && (lens.focus_distance - 5.0).abs() < 1e-5);
         // A ray along x at y = z = 0.1 enters the cut tetrahedron at x = 0 and leaves at the cut.

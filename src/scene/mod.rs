@@ -640,7 +640,7 @@ impl Scene {
     /// The hit point and (unit, unoriented) geometric normal of a hit on a triangle or a CSG surface.
     pub fn hit_geometry(&self, hit: &Hit, ray: &Ray) -> (Vec3, Vec3) {
         if let Some((object, surface)) = hit.csg() {
-            let s = self.csg[object as usize].surface(surface, ray.at(hit.t));
+            let s = self.csg[object as usize].surface(surface, ray.at(hit.t), ray.time);
             return (s.p, s.n);
         }
         // Where the instance is at the ray's time (moving instances differ from `world_triangle`).
@@ -657,6 +657,7 @@ impl Scene {
     pub fn has_motion(&self) -> bool {
         self.instances.iter().any(|i| i.motion.is_some())
             || self.cameras.iter().any(|c| c.motion.is_some())
+            || self.csg.iter().any(|c| c.moves())
     }
 
     pub fn triangle_count(&self) -> usize {

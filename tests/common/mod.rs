@@ -75,3 +75,21 @@ pub fn render_with(
     )
     .0
 }
+
+/// Centroid and variance (per axis, pixels^2) of the image's red channel, weighted by value.
+pub fn moments(img: &Image) -> (f64, f64, f64, f64) {
+    let (mut s, mut sx, mut sy, mut sxx, mut syy) = (0.0f64, 0.0, 0.0, 0.0, 0.0);
+    for y in 0..img.height {
+        for x in 0..img.width {
+            let w = img.get(x, y).x as f64;
+            let (fx, fy) = (x as f64 + 0.5, y as f64 + 0.5);
+            s += w;
+            sx += w * fx;
+            sy += w * fy;
+            sxx += w * fx * fx;
+            syy += w * fy * fy;
+        }
+    }
+    let (mx, my) = (sx / s, sy / s);
+    (mx, my, sxx / s - mx * mx, syy / s - my * my)
+}
