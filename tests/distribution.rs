@@ -8,7 +8,6 @@ use std::sync::Arc;
 use glam::{Mat4, Quat, Vec3, Vec4};
 use glint::accel::Backend;
 use glint::film::filter::FilterKind;
-use glint::film::Image;
 use glint::render::RenderSettings;
 use glint::scene::animation::{self, Channel, Interpolation, Node, Property};
 use glint::scene::{Animation, Camera, Instance, Lens, Material, Mesh, Scene};
