@@ -8,6 +8,7 @@ use std::sync::Arc;
 use glam::{Mat4, Quat, Vec3, Vec4};
 use glint::accel::Backend;
 use glint::film::filter::FilterKind;
+use glint::film::Image;
 use glint::render::RenderSettings;
 use glint::scene::animation::{self, Channel, Interpolation, Node, Property};
 use glint::scene::{Animation, Camera, Instance, Lens, Material, Mesh, Scene};
@@ -343,4 +344,61 @@ fn interpolation_test_animations_sample_as_the_spec_says() {
     }
     eprintln!("{checked} key intervals checked");
     assert!(checked >= 9 * 3, "{checked}");
+}
+
+/// The project's scene files (lens, shutter, moving CSG, area lights, glass) load, use what they
+/// say they use, and render finite and alike in every backend.
+#[test]
+fn scene_files_render_alike_in_every_backend() {
+    use glint::scene::features::Features;
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 3, "{files:?}");
+    for path in files {
+        let (scene, camera) = common::load_for_render(&path, 48, 32);
+        let f = Features::of(&scene, &camera);
+        if path.ends_with("effects.toml") {
+            assert!(
+                f.motion && f.lens && f.transmission && f.area_lights,
+                "{f:?}"
+            );
+        }
+        let s = RenderSettings {
+            width: 48,
+            height: 32,
+            spp: 4,
+            seed: 5,
+            ..Default::default()
+        };
+        let images: Vec<Image> = Backend::all_available()
+            .into_iter()
+            .filter(|&b| b != Backend::Obvhs)
+            .map(|b| common::render_with(&scene, &camera, b, &s))
+            .collect();
+        let mean = |img: &Image| {
+            img.pixels
+                .iter()
+                .map(|p| p.truncate().element_sum() as f64)
+                .sum::<f64>()
+                / img.pixels.len() as f64
+        };
+        let m0 = mean(&images[0]);
+        assert!(m0 > 0.0, "{}: black", path.display());
+        for img in &images {
+            assert!(!img.has_non_finite(), "{}", path.display());
+            let mad = img
+                .pixels
+                .iter()
+                .zip(&images[0].pixels)
+                .map(|(a, b)| (*a - *b).truncate().abs().element_sum() as f64)
+                .sum::<f64>()
+                / img.pixels.len() as f64;
+            assert!(mad < 0.01 * m0, "{}: {mad} vs mean {m0}", path.display());
+        }
+    }
 }

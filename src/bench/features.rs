@@ -1,5 +1,5 @@
-//! `glint bench features`: what skipping unused features saves on a static, pinhole, opaque scene:
-//! the same render with motion, lens and thin-wall machinery forced on (same image), timed.
+//! `glint bench features`: what each effect costs and what skipping unused ones saves: the scene as
+//! derived, with each effect it uses taken away, and with the machinery it skips forced on (same image).
 
 use std::fmt::Write as _;
 use std::sync::Arc;
@@ -12,7 +12,7 @@ use super::rays::load_input;
 use crate::accel::{self, Backend};
 use crate::render::{self, RenderSettings};
 use crate::scene::features::Features;
-use crate::scene::{defaults, Lens, Material, Motion, Scene};
+use crate::scene::{defaults, Camera, Lens, Material, Motion, Scene};
 
 /// One variant of the scene: what was forced, build and render time (best of the repeats), and how
 /// far its image is from the derived one.
@@ -25,54 +25,135 @@ pub struct Row {
     pub image_difference: f64,
 }
 
-#[derive(Clone, Copy, Debug)]
-struct Force {
-    motion: bool,
-    lens: bool,
-    thin: bool,
+/// A change to the scene and camera: what it is called, and whether it applies given what the
+/// scene uses (forcing makes sense for what a scene skips, removing for what it uses).
+struct Variant {
+    name: &'static str,
+    applies: fn(&Features) -> bool,
+    change: fn(&mut Scene, &mut Camera),
 }
 
-const VARIANTS: [(&str, Force); 5] = [
-    (
-        "derived (skips unused)",
-        Force {
-            motion: false,
-            lens: false,
-            thin: false,
+fn force_motion(scene: &mut Scene, _: &mut Camera) {
+    // Two equal steps: every instance goes through the moving set and rays carry times, while the
+    // image stays the same.
+    for inst in &mut scene.instances {
+        inst.motion.get_or_insert(Motion {
+            steps: vec![inst.to_world; 2],
+        });
+    }
+}
+
+fn force_lens(scene: &mut Scene, cam: &mut Camera) {
+    // A lens far below a pixel: lens samples are drawn, the image is a pinhole's.
+    let (center, _) = defaults::bounding_sphere(&scene.bounds());
+    cam.lens = Some(Lens {
+        radius: 1e-7,
+        focus_distance: (center - cam.position()).length().max(1e-3),
+    });
+}
+
+fn force_thin(scene: &mut Scene, _: &mut Camera) {
+    // An unused thin transmissive material switches the integrator to its thin-wall shadow path
+    // (shadow rays walk surfaces with closest-hit queries).
+    scene.materials.push(Material {
+        name: "forced thin wall".into(),
+        transmission: 1.0,
+        metallic: 0.0,
+        ..Material::default()
+    });
+}
+
+fn without_motion(scene: &mut Scene, cam: &mut Camera) {
+    for inst in &mut scene.instances {
+        inst.motion = None;
+    }
+    let csg = std::mem::take(&mut scene.csg);
+    scene.csg = csg
+        .into_iter()
+        .map(|c| {
+            let rest = c.to_world;
+            c.with_motion(Motion { steps: vec![rest] })
+        })
+        .collect();
+    cam.motion = None;
+}
+
+fn without_lens(_: &mut Scene, cam: &mut Camera) {
+    cam.lens = None;
+}
+
+fn without_transmission(scene: &mut Scene, _: &mut Camera) {
+    for m in &mut scene.materials {
+        m.transmission = 0.0;
+    }
+}
+
+fn without_area_lights(scene: &mut Scene, _: &mut Camera) {
+    // Each analytic area light becomes a point light of the same power at its centre: hard shadows.
+    for l in &mut scene.lights {
+        if let Some(point) = l.as_point_light() {
+            *l = point;
+        }
+    }
+}
+
+fn without_glossy(scene: &mut Scene, _: &mut Camera) {
+    // Every lobe fully rough: no sharp highlights or reflections to resolve.
+    for m in &mut scene.materials {
+        m.roughness = 1.0;
+    }
+}
+
+const VARIANTS: [Variant; 9] = [
+    Variant {
+        name: "+ motion machinery",
+        applies: |f| !f.motion,
+        change: force_motion,
+    },
+    Variant {
+        name: "+ lens sampling",
+        applies: |f| !f.lens,
+        change: force_lens,
+    },
+    Variant {
+        name: "+ thin-wall shadows",
+        applies: |f| !f.thin_walls,
+        change: force_thin,
+    },
+    Variant {
+        name: "all three forced",
+        applies: |f| !f.motion && !f.lens && !f.thin_walls,
+        change: |s, c| {
+            force_motion(s, c);
+            force_lens(s, c);
+            force_thin(s, c);
         },
-    ),
-    (
-        "+ motion machinery",
-        Force {
-            motion: true,
-            lens: false,
-            thin: false,
-        },
-    ),
-    (
-        "+ lens sampling",
-        Force {
-            motion: false,
-            lens: true,
-            thin: false,
-        },
-    ),
-    (
-        "+ thin-wall shadows",
-        Force {
-            motion: false,
-            lens: false,
-            thin: true,
-        },
-    ),
-    (
-        "all forced",
-        Force {
-            motion: true,
-            lens: true,
-            thin: true,
-        },
-    ),
+    },
+    Variant {
+        name: "- motion blur",
+        applies: |f| f.motion,
+        change: without_motion,
+    },
+    Variant {
+        name: "- depth of field",
+        applies: |f| f.lens,
+        change: without_lens,
+    },
+    Variant {
+        name: "- transmission",
+        applies: |f| f.transmission,
+        change: without_transmission,
+    },
+    Variant {
+        name: "- soft shadows",
+        applies: |f| f.area_lights,
+        change: without_area_lights,
+    },
+    Variant {
+        name: "- glossy (rough 1)",
+        applies: |_| true,
+        change: without_glossy,
+    },
 ];
 
 pub fn run(
@@ -88,36 +169,19 @@ pub fn run(
     let features = Features::of(&base, &camera);
     let mut rows = Vec::new();
     let mut reference: Option<Vec<glam::Vec4>> = None;
-    for (variant, force) in VARIANTS {
+    let derived = Variant {
+        name: "as derived",
+        applies: |_| true,
+        change: |_, _| {},
+    };
+    for v in std::iter::once(&derived).chain(VARIANTS.iter()) {
+        if !(v.applies)(&features) {
+            continue;
+        }
         let mut scene: Scene = base.clone();
         let mut cam = camera.clone();
-        if force.motion {
-            // Two equal steps: every instance goes through the moving set and rays carry times,
-            // while the image stays the same.
-            for inst in &mut scene.instances {
-                inst.motion.get_or_insert(Motion {
-                    steps: vec![inst.to_world; 2],
-                });
-            }
-        }
-        if force.lens && cam.lens.is_none() {
-            // A lens far below a pixel: lens samples are drawn, the image is a pinhole's.
-            let (center, _) = defaults::bounding_sphere(&scene.bounds());
-            cam.lens = Some(Lens {
-                radius: 1e-7,
-                focus_distance: (center - cam.position()).length().max(1e-3),
-            });
-        }
-        if force.thin {
-            // An unused thin transmissive material switches the integrator to its thin-wall
-            // shadow path (shadow rays walk surfaces with closest-hit queries).
-            scene.materials.push(Material {
-                name: "forced thin wall".into(),
-                transmission: 1.0,
-                metallic: 0.0,
-                ..Material::default()
-            });
-        }
+        (v.change)(&mut scene, &mut cam);
+        let variant = v.name;
         let scene = Arc::new(scene);
         let (mut build_seconds, mut render_seconds) = (f64::INFINITY, f64::INFINITY);
         let mut image = None;
@@ -180,6 +244,7 @@ pub fn table(input: &str, features: &Features, rows: &[Row]) -> String {
         );
     }
     s += "(ratio: render time over the derived render's; image diff: mean |difference| over the\n\
-          derived image's mean; forcing keeps the image, up to sampling that the extra dimensions shift)\n";
+          derived image's mean. `+` rows force machinery the scene skips and keep its image, up to\n\
+          sampling that the extra dimensions shift; `-` rows take away an effect the scene uses)\n";
     s
 }

@@ -295,6 +295,40 @@ pub enum Light {
 }
 
 impl Light {
+    /// For an analytic area light, the point light at its centre with the intensity it has along
+    /// its axis (radiance times projected area), so it lights what faces it about as brightly but
+    /// casts hard shadows; None for other lights.
+    pub fn as_point_light(&self) -> Option<Light> {
+        let (position, area, radiance) = match *self {
+            Light::Sphere {
+                center,
+                radius,
+                radiance,
+            }
+            | Light::Disk {
+                center,
+                radius,
+                radiance,
+                ..
+            } => (center, std::f32::consts::PI * radius * radius, radiance),
+            Light::Rect {
+                corner,
+                edge_u,
+                edge_v,
+                radiance,
+            } => (
+                corner + 0.5 * (edge_u + edge_v),
+                edge_u.cross(edge_v).length(),
+                radiance,
+            ),
+            _ => return None,
+        };
+        Some(Light::Point {
+            position,
+            intensity: radiance * area,
+        })
+    }
+
     /// The light moved by an affine transform: positions as points, directions as vectors (renormalised),
     /// normals by the inverse transpose, radii by the transform's mean scale, environment maps by its
     /// rotation (a constant environment is unchanged).
