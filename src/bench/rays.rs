@@ -214,8 +214,8 @@ pub fn run(input: &str, config: &RaysConfig) -> Result<Report> {
         crate::scene::animation::pose(&mut scene, config.frame_time, shutter);
     }
     let scene = Arc::new(scene);
-    if scene.triangle_count() == 0 {
-        bail!("{input}: no triangles to trace");
+    if scene.triangle_count() == 0 && scene.csg.is_empty() {
+        bail!("{input}: no triangles or CSG objects to trace");
     }
     // The same rays for every backend, generated with the Rust BVH (always available).
     let reference = accel::build(scene.clone(), Backend::Bvh)?;
