@@ -8,6 +8,7 @@ use std::sync::Arc;
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::f4::F4;
 use super::flat::{self, TriId};
 use super::motion::MovingSet;
 use super::objects::ObjectBvh;
@@ -42,8 +43,8 @@ struct Node {
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
 struct Node4 {
-    lo: [[f32; 4]; 3],
-    hi: [[f32; 4]; 3],
+    /// Rows of four lanes: lower x, y, z, then upper x, y, z.
+    b: [[f32; 4]; 6],
     child: [u32; 4],
     count: [u32; 4],
 }
@@ -149,38 +150,42 @@ impl Bvh {
     }
 
     /// Walks the tree front to back, keeping the closest accepted hit; with `any`, returns the first.
+    /// The nearest child hit goes on without a trip through the stack; the others are pushed
+    /// farthest first.
     #[inline(always)]
     fn traverse(&self, ray: &Ray, any: bool) -> Option<Hit> {
         if self.nodes.is_empty() {
             return None;
         }
         let sh = RayShear::new(ray.d);
-        let inv = ray.d.recip();
-        // Ize 2013: widen the far slab distance by 1 + 2 gamma(3) so that rounding never culls a box
-        // that the ray touches.
-        let far_scale = 1.0 + 2.0 * gamma(3);
+        let inv = ray.d.recip().to_array();
         let o = ray.o.to_array();
-        let inv = inv.to_array();
-        // Per axis, which bound array is entered first.
-        let near_is_hi = [inv[0] < 0.0, inv[1] < 0.0, inv[2] < 0.0];
+        // Per axis, the bound rows entered first and last (`Node4::b`: lo x y z, hi x y z).
+        let near: [usize; 3] = std::array::from_fn(|a| a + 3 * (inv[a] < 0.0) as usize);
+        let far: [usize; 3] = std::array::from_fn(|a| a + 3 * (inv[a] >= 0.0) as usize);
+        let inv4 = inv.map(F4::splat);
+        let o4 = o.map(F4::splat);
+        let t_min4 = F4::splat(ray.t_min);
+        // Ize 2013: widen the far slab distance by 1 + 2 gamma(3) so that rounding never culls a box
+        // that the ray touches. Scaling the smallest far distance is the same as scaling each (the
+        // rounded product is monotonic in its operand).
+        let far_scale = F4::splat(1.0 + 2.0 * gamma(3));
         let mut t_max = ray.t_max;
         let mut best: Option<Hit> = None;
         // Entries: (child, count, entry distance); inner nodes have count 0.
         let mut stack = [(0u32, 0u32, 0.0f32); 64];
-        let mut sp = 1;
-        while sp > 0 {
-            sp -= 1;
-            let (child, count, t_enter) = stack[sp];
-            if t_enter > t_max {
-                continue;
-            }
+        let mut sp = 0;
+        let (mut child, mut count) = (0u32, 0u32);
+        loop {
             if count > 0 {
                 let first = child as usize;
                 for packet in first..first + (count as usize).div_ceil(4) {
                     let h = triangle::intersect4(ray.o, &sh, &self.tris[packet], ray.t_min, t_max);
-                    for lane in 0..4 {
+                    let mut mask = h.mask;
+                    while mask != 0 {
+                        let lane = mask.trailing_zeros() as usize;
+                        mask &= mask - 1;
                         // t_max shrinks as lanes are accepted: later, farther lanes drop out.
-                        // (A miss is +inf, which fails too.)
                         if h.t[lane] >= t_max {
                             continue;
                         }
@@ -202,46 +207,65 @@ impl Bvh {
                         best = Some(hit);
                     }
                 }
-                continue;
-            }
-            let node = &self.nodes[child as usize];
-            let mut t0 = [ray.t_min; 4];
-            let mut t1 = [t_max; 4];
-            for axis in 0..3 {
-                let (near, far) = if near_is_hi[axis] {
-                    (&node.hi[axis], &node.lo[axis])
-                } else {
-                    (&node.lo[axis], &node.hi[axis])
-                };
-                for l in 0..4 {
-                    let tn = (near[l] - o[axis]) * inv[axis];
-                    let tf = (far[l] - o[axis]) * inv[axis] * far_scale;
-                    // Written as selects so they compile to maxps/minps; a NaN distance (0 * inf on a
-                    // slab face) fails the comparison and leaves the interval as it was.
-                    t0[l] = if tn > t0[l] { tn } else { t0[l] };
-                    t1[l] = if tf < t1[l] { tf } else { t1[l] };
-                }
-            }
-            // Push the children that were hit, farthest first, so the nearest is popped next.
-            let mut order = [(0.0f32, 0usize); 4];
-            let mut n = 0;
-            for l in 0..4 {
-                if t0[l] <= t1[l] {
-                    let mut k = n;
-                    while k > 0 && order[k - 1].0 < t0[l] {
-                        order[k] = order[k - 1];
-                        k -= 1;
+            } else {
+                let node = &self.nodes[child as usize];
+                let slab =
+                    |row: usize, axis: usize| (F4::load(&node.b[row]) - o4[axis]) * inv4[axis];
+                // Selects (maxps/minps) that keep the running bound when a distance is NaN (0 * inf on
+                // a slab face).
+                let t0 = slab(near[2], 2).max(slab(near[1], 1).max(slab(near[0], 0).max(t_min4)));
+                let t1 = slab(far[2], 2)
+                    .min(slab(far[1], 1).min(slab(far[0], 0).min(F4::splat(f32::INFINITY))));
+                let t1 = (t1 * far_scale).min(F4::splat(t_max));
+                let mut mask = t0.le(t1).bits();
+                if mask != 0 {
+                    let t0 = t0.to_array();
+                    let first = mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    if mask == 0 {
+                        // One child: go straight on.
+                        child = node.child[first];
+                        count = node.count[first];
+                        continue;
                     }
-                    order[k] = (t0[l], l);
-                    n += 1;
+                    // Sort the hit children nearest first (insertion into at most four).
+                    let mut order = [(0.0f32, 0usize); 4];
+                    order[0] = (t0[first], first);
+                    let mut n = 1;
+                    while mask != 0 {
+                        let l = mask.trailing_zeros() as usize;
+                        mask &= mask - 1;
+                        let mut k = n;
+                        while k > 0 && order[k - 1].0 > t0[l] {
+                            order[k] = order[k - 1];
+                            k -= 1;
+                        }
+                        order[k] = (t0[l], l);
+                        n += 1;
+                    }
+                    for &(t, l) in order[1..n].iter().rev() {
+                        stack[sp] = (node.child[l], node.count[l], t);
+                        sp += 1;
+                    }
+                    let l = order[0].1;
+                    child = node.child[l];
+                    count = node.count[l];
+                    continue;
                 }
             }
-            for &(t, l) in &order[..n] {
-                stack[sp] = (node.child[l], node.count[l], t);
-                sp += 1;
+            // Pop the nearest pending child that can still hold a closer hit.
+            loop {
+                if sp == 0 {
+                    return best;
+                }
+                sp -= 1;
+                let (c, n, t_enter) = stack[sp];
+                if t_enter <= t_max {
+                    (child, count) = (c, n);
+                    break;
+                }
             }
         }
-        best
     }
 }
 
@@ -312,8 +336,14 @@ fn collapse(src: &Source, at: usize, out: &mut Collapsed) -> u32 {
     }
     let index = out.nodes.len();
     out.nodes.push(Node4 {
-        lo: [[f32::INFINITY; 4]; 3],
-        hi: [[f32::NEG_INFINITY; 4]; 3],
+        b: [
+            [f32::INFINITY; 4],
+            [f32::INFINITY; 4],
+            [f32::INFINITY; 4],
+            [f32::NEG_INFINITY; 4],
+            [f32::NEG_INFINITY; 4],
+            [f32::NEG_INFINITY; 4],
+        ],
         child: [0; 4],
         count: [0; 4],
     });
@@ -326,8 +356,8 @@ fn collapse(src: &Source, at: usize, out: &mut Collapsed) -> u32 {
         };
         let node = &mut out.nodes[index];
         for axis in 0..3 {
-            node.lo[axis][lane] = n.min[axis];
-            node.hi[axis][lane] = n.max[axis];
+            node.b[axis][lane] = n.min[axis];
+            node.b[3 + axis][lane] = n.max[axis];
         }
         node.child[lane] = child;
         node.count[lane] = count;
