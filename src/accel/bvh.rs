@@ -26,8 +26,8 @@ const TRAVERSAL_COST: f32 = 1.0;
 /// Subtrees smaller than this are built on the current thread.
 const PARALLEL_THRESHOLD: usize = 4096;
 
-/// A node: bounds and either two children (`count == 0`, left child at `index`, right child at
-/// `index + 1`) or a leaf of `count` triangles starting at `index`. 32 bytes, two per cache line.
+/// A node of the binary tree: bounds and either two children (`count == 0`, left child right after
+/// it, right child at `index`) or a leaf of `count` triangles starting at `index`. 32 bytes, two per cache line.
 #[derive(Clone, Copy, Debug)]
 #[repr(C)]
 struct Node {
@@ -63,14 +63,6 @@ pub struct Bvh {
     moving: Option<Box<MovingSet>>,
 }
 
-/// Build-time reference to one triangle.
-#[derive(Clone, Copy)]
-struct PrimRef {
-    bounds: Aabb,
-    centroid: Vec3,
-    index: u32,
-}
-
 impl Bvh {
     /// Builds over the scene's static instances (world space), plus its moving ones (`MovingSet`).
     pub fn build(scene: Arc<Scene>) -> Self {
@@ -84,22 +76,33 @@ impl Bvh {
 
     /// A BVH over exactly these triangles (hits report `ids`), in whatever space they are given.
     pub fn from_triangles(scene: Arc<Scene>, tris: Vec<[Vec3; 3]>, ids: Vec<TriId>) -> Self {
-        let mut refs: Vec<PrimRef> = tris
-            .iter()
-            .enumerate()
-            .map(|(i, t)| {
-                let bounds = Aabb::from_points(*t);
-                PrimRef {
-                    bounds,
-                    centroid: bounds.center(),
-                    index: i as u32,
-                }
-            })
-            .collect();
-        let bin = build_subtree(&mut refs, 0);
-        let order: Vec<u32> = refs.iter().map(|r| r.index).collect();
+        let mut refs: Vec<PrimRef> = if tris.len() > PARALLEL_THRESHOLD {
+            tris.par_iter()
+                .enumerate()
+                .map(|(i, t)| PrimRef::new(t, i as u32))
+                .collect()
+        } else {
+            tris.iter()
+                .enumerate()
+                .map(|(i, t)| PrimRef::new(t, i as u32))
+                .collect()
+        };
+        let mut bin = vec![
+            Node {
+                min: [0.0; 3],
+                index: 0,
+                max: [0.0; 3],
+                count: 0,
+            };
+            (2 * refs.len()).max(1) - 1
+        ];
+        if !refs.is_empty() {
+            let bounds = bounds_of(&refs);
+            build_node(&mut refs, 0, bounds, &mut bin, 0);
+        }
+        let order: Vec<u32> = refs.iter().map(|r| r.index()).collect();
         let mut out = Collapsed {
-            nodes: Vec::with_capacity(bin.len() / 2 + 1),
+            nodes: Vec::with_capacity(tris.len() / 4 + 1),
             packets: Vec::with_capacity(tris.len() / 2 + 1),
             ids: Vec::with_capacity(tris.len() * 2),
         };
@@ -321,13 +324,9 @@ fn pack_leaf(src: &Source, leaf: &Node, out: &mut Collapsed) -> u32 {
 /// Turns the binary tree below `at` into 4-wide nodes appended to `out`; returns the new node's index.
 fn collapse(src: &Source, at: usize, out: &mut Collapsed) -> u32 {
     let bin = src.bin;
-    // Open the largest inner child until there are four children (or only leaves left).
-    let mut kids: Vec<usize> = if bin[at].count > 0 {
-        vec![at]
-    } else {
-        let l = bin[at].index as usize;
-        vec![l, l + 1]
-    };
+    let inner = |i: usize| bin[i].count == 0;
+    // Children of binary inner node `i`: the left one follows it, the right one is at `index`.
+    let children = |i: usize| [i + 1, bin[i].index as usize];
     let area = |i: usize| {
         let n = &bin[i];
         Aabb {
@@ -336,16 +335,26 @@ fn collapse(src: &Source, at: usize, out: &mut Collapsed) -> u32 {
         }
         .surface_area()
     };
-    while kids.len() < 4 {
-        let Some(pos) = (0..kids.len())
-            .filter(|&k| bin[kids[k]].count == 0)
+    // Open the largest inner child until there are four children (or only leaves left).
+    let mut kids = [0usize; 4];
+    let mut n = if inner(at) {
+        kids[..2].copy_from_slice(&children(at));
+        2
+    } else {
+        kids[0] = at;
+        1
+    };
+    while n < 4 {
+        let Some(pos) = (0..n)
+            .filter(|&k| inner(kids[k]))
             .max_by(|&a, &b| area(kids[a]).total_cmp(&area(kids[b])))
         else {
             break;
         };
-        let l = bin[kids[pos]].index as usize;
-        kids.swap_remove(pos);
-        kids.extend([l, l + 1]);
+        let [l, r] = children(kids[pos]);
+        kids[pos] = l;
+        kids[n] = r;
+        n += 1;
     }
     let index = out.nodes.len();
     out.nodes.push(Node4 {
@@ -360,17 +369,17 @@ fn collapse(src: &Source, at: usize, out: &mut Collapsed) -> u32 {
         child: [0; 4],
         count: [0; 4],
     });
-    for (lane, &k) in kids.iter().enumerate() {
-        let n = bin[k];
-        let (child, count) = if n.count > 0 {
-            (pack_leaf(src, &n, out), n.count)
+    for (lane, &k) in kids[..n].iter().enumerate() {
+        let c = bin[k];
+        let (child, count) = if c.count > 0 {
+            (pack_leaf(src, &c, out), c.count)
         } else {
             (collapse(src, k, out), 0)
         };
         let node = &mut out.nodes[index];
         for axis in 0..3 {
-            node.b[axis][lane] = n.min[axis];
-            node.b[3 + axis][lane] = n.max[axis];
+            node.b[axis][lane] = c.min[axis];
+            node.b[3 + axis][lane] = c.max[axis];
         }
         node.child[lane] = child;
         node.count[lane] = count;
@@ -378,33 +387,100 @@ fn collapse(src: &Source, at: usize, out: &mut Collapsed) -> u32 {
     index as u32
 }
 
-/// Builds the binary tree over `refs` (reordering them in place into leaf order); leaves index into
-/// the whole reference array, whose slice this is from position `base` on.
-fn build_subtree(refs: &mut [PrimRef], base: u32) -> Vec<Node> {
-    let mut nodes = Vec::with_capacity(2 * refs.len() / MAX_LEAF.max(1) + 1);
-    nodes.push(Node {
-        min: [0.0; 3],
-        index: 0,
-        max: [0.0; 3],
-        count: 0,
-    });
-    build_into(refs, base, 0, &mut nodes);
-    nodes
+/// Build-time reference to one triangle: its bounds, with the triangle's index in the spare lane of
+/// `lo` (as bits xored with those of 1.0, so the lane holds a normal float and never slows the
+/// arithmetic on whole rows down; the lane is ignored).
+#[derive(Clone, Copy)]
+#[repr(C, align(16))]
+struct PrimRef {
+    lo: [f32; 4],
+    hi: [f32; 4],
 }
 
-fn set_bounds(node: &mut Node, b: Aabb) {
-    node.min = b.min.to_array();
-    node.max = b.max.to_array();
+const INDEX_BITS: u32 = 0x3F80_0000;
+
+impl PrimRef {
+    fn new(t: &[Vec3; 3], index: u32) -> Self {
+        let b = Aabb::from_points(*t);
+        let [x, y, z] = b.min.to_array();
+        let [u, v, w] = b.max.to_array();
+        Self {
+            lo: [x, y, z, f32::from_bits(index ^ INDEX_BITS)],
+            hi: [u, v, w, 0.0],
+        }
+    }
+
+    fn index(&self) -> u32 {
+        self.lo[3].to_bits() ^ INDEX_BITS
+    }
+
+    fn bounds(&self) -> Box3 {
+        Box3 {
+            lo: F4::load(&self.lo),
+            hi: F4::load(&self.hi),
+        }
+    }
+
+    /// Twice the centroid (lanes x, y, z).
+    fn c2(&self) -> F4 {
+        F4::load(&self.lo) + F4::load(&self.hi)
+    }
+}
+
+/// A box as two rows (lanes x, y, z; the fourth is ignored).
+#[derive(Clone, Copy)]
+struct Box3 {
+    lo: F4,
+    hi: F4,
+}
+
+impl Box3 {
+    fn empty() -> Self {
+        Self {
+            lo: F4::splat(f32::INFINITY),
+            hi: F4::splat(f32::NEG_INFINITY),
+        }
+    }
+
+    /// The union with `o`; a NaN lane of `o` leaves this box's lane as it was.
+    #[inline(always)]
+    fn union(self, o: Box3) -> Self {
+        Self {
+            lo: o.lo.min(self.lo),
+            hi: o.hi.max(self.hi),
+        }
+    }
+
+    #[inline(always)]
+    fn grow(self, p: F4) -> Self {
+        Self {
+            lo: p.min(self.lo),
+            hi: p.max(self.hi),
+        }
+    }
+
+    /// Half the surface area (of a non-empty box).
+    #[inline(always)]
+    fn half_area(&self) -> f32 {
+        let [x, y, z, _] = (self.hi - self.lo).to_array();
+        x * y + y * z + z * x
+    }
+
+    fn store(&self, node: &mut Node) {
+        let (lo, hi) = (self.lo.to_array(), self.hi.to_array());
+        node.min = [lo[0], lo[1], lo[2]];
+        node.max = [hi[0], hi[1], hi[2]];
+    }
 }
 
 /// Sets with more references than this are binned in parallel.
 const PARALLEL_BINNING: usize = 1 << 16;
 
-/// Bounds of the references and of their centroids.
-fn bounds_of(refs: &[PrimRef]) -> (Aabb, Aabb) {
-    let fold = |(b, c): (Aabb, Aabb), r: &PrimRef| (b.union(r.bounds), c.grow(r.centroid));
-    let merge = |(b0, c0): (Aabb, Aabb), (b1, c1): (Aabb, Aabb)| (b0.union(b1), c0.union(c1));
-    let empty = (Aabb::EMPTY, Aabb::EMPTY);
+/// Bounds of the references and of their doubled centroids.
+fn bounds_of(refs: &[PrimRef]) -> (Box3, Box3) {
+    let fold = |(b, c): (Box3, Box3), r: &PrimRef| (b.union(r.bounds()), c.grow(r.c2()));
+    let merge = |(b0, c0): (Box3, Box3), (b1, c1): (Box3, Box3)| (b0.union(b1), c0.union(c1));
+    let empty = (Box3::empty(), Box3::empty());
     if refs.len() > PARALLEL_BINNING {
         refs.par_chunks(8192)
             .map(|c| c.iter().fold(empty, fold))
@@ -414,76 +490,90 @@ fn bounds_of(refs: &[PrimRef]) -> (Aabb, Aabb) {
     }
 }
 
-/// Fills node `at` (already allocated) from `refs`, appending its descendants.
-fn build_into(refs: &mut [PrimRef], base: u32, at: usize, nodes: &mut Vec<Node>) {
-    let (bounds, centroids) = bounds_of(refs);
-    set_bounds(&mut nodes[at], bounds);
+/// Builds the binary tree over `refs` into `slots`, reordering `refs` into leaf order. The tree
+/// over `n` references takes at most `2n - 1` nodes, so each subtree gets that many slots (some
+/// stay unused): the node itself, its left subtree right after it, then its right subtree (whose
+/// index the node keeps). `slot0` is the global index of `slots[0]`, `base` that of `refs[0]`.
+fn build_node(
+    refs: &mut [PrimRef],
+    base: u32,
+    (bounds, centroids): (Box3, Box3),
+    slots: &mut [Node],
+    slot0: u32,
+) {
+    bounds.store(&mut slots[0]);
     let split = if refs.len() <= 1 {
         None
     } else {
-        find_split(refs, bounds, centroids)
+        find_split(refs, &bounds, &centroids)
     };
-    let mid = match split {
-        Some(s) => partition_in_place(refs, |r| s.bin_of(r.centroid) < s.bin),
+    let (mid, left, right) = match split {
+        Some(s) => partition(refs, &s),
         // No split beats a leaf, or the centroids coincide: still split large sets so leaves stay small.
         None if refs.len() > MAX_LEAF => {
-            let axis = centroids.extent().max_position();
+            let [x, y, z, _] = (centroids.hi - centroids.lo).to_array();
+            let axis = if x >= y && x >= z {
+                0
+            } else if y >= z {
+                1
+            } else {
+                2
+            };
             let mid = refs.len() / 2;
-            refs.select_nth_unstable_by(mid, |a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
-            mid
+            refs.select_nth_unstable_by(mid, |a, b| {
+                a.c2().to_array()[axis].total_cmp(&b.c2().to_array()[axis])
+            });
+            (mid, bounds_of(&refs[..mid]), bounds_of(&refs[mid..]))
         }
         None => {
-            nodes[at].index = base;
-            nodes[at].count = refs.len() as u32;
+            slots[0].index = base;
+            slots[0].count = refs.len() as u32;
             return;
         }
     };
-    let l = nodes.len();
-    nodes[at].index = l as u32;
-    nodes[at].count = 0;
-    let blank = nodes[at];
-    nodes.push(blank);
-    nodes.push(blank);
+    let (head, rest) = slots.split_at_mut(1);
+    let (left_slots, right_slots) = rest.split_at_mut(2 * mid - 1);
+    let right_slot = slot0 + 2 * mid as u32;
+    head[0].index = right_slot;
+    head[0].count = 0;
     let parallel = refs.len() >= PARALLEL_THRESHOLD;
-    let (left, right) = refs.split_at_mut(mid);
+    let (lrefs, rrefs) = refs.split_at_mut(mid);
     let right_base = base + mid as u32;
     if parallel {
-        let (lt, rt) = rayon::join(
-            || build_subtree(left, base),
-            || build_subtree(right, right_base),
+        rayon::join(
+            || build_node(lrefs, base, left, left_slots, slot0 + 1),
+            || build_node(rrefs, right_base, right, right_slots, right_slot),
         );
-        graft(lt, l, nodes);
-        graft(rt, l + 1, nodes);
     } else {
-        build_into(left, base, l, nodes);
-        build_into(right, right_base, l + 1, nodes);
+        build_node(lrefs, base, left, left_slots, slot0 + 1);
+        build_node(rrefs, right_base, right, right_slots, right_slot);
     }
 }
 
-/// Moves the references for which `left` holds to the front; returns how many there are.
-fn partition_in_place(refs: &mut [PrimRef], left: impl Fn(&PrimRef) -> bool) -> usize {
-    let mut i = 0;
-    for j in 0..refs.len() {
-        if left(&refs[j]) {
-            refs.swap(i, j);
+/// Moves the references left of the split to the front, gathering the bounds and doubled-centroid
+/// bounds of both sides on the way; returns how many go left, and the two sides' bounds.
+fn partition(refs: &mut [PrimRef], s: &Split) -> (usize, (Box3, Box3), (Box3, Box3)) {
+    let goes_left = |r: &PrimRef| s.bins_of(r.c2())[s.axis] < s.bin;
+    let (mut lb, mut lc, mut rb, mut rc) =
+        (Box3::empty(), Box3::empty(), Box3::empty(), Box3::empty());
+    let (mut i, mut j) = (0, refs.len());
+    loop {
+        while i < j && goes_left(&refs[i]) {
+            lb = lb.union(refs[i].bounds());
+            lc = lc.grow(refs[i].c2());
             i += 1;
         }
-    }
-    i
-}
-
-/// Copies a separately built subtree into `nodes`, its root into slot `at`, renumbering inner nodes
-/// (leaf indices are already global).
-fn graft(sub: Vec<Node>, at: usize, nodes: &mut Vec<Node>) {
-    let node_base = nodes.len() as u32 - 1; // subtree node k>0 lands at node_base + k
-    let fix = |mut n: Node| {
-        if n.count == 0 {
-            n.index += node_base;
+        while i < j && !goes_left(&refs[j - 1]) {
+            rb = rb.union(refs[j - 1].bounds());
+            rc = rc.grow(refs[j - 1].c2());
+            j -= 1;
         }
-        n
-    };
-    nodes[at] = fix(sub[0]);
-    nodes.extend(sub[1..].iter().map(|&n| fix(n)));
+        if i >= j {
+            break;
+        }
+        refs.swap(i, j - 1);
+    }
+    (i, (lb, lc), (rb, rc))
 }
 
 #[derive(Clone, Copy)]
@@ -493,46 +583,52 @@ struct Split {
     bin: usize,
     /// Bins in use (fewer for small sets, where evaluating 16 would cost more than it finds).
     bins: usize,
-    lo: f32,
-    scale: f32,
+    /// Per axis, the doubled-centroid bound and the scale that map onto bin numbers.
+    lo: F4,
+    scale: F4,
 }
 
 impl Split {
-    fn bin_of(&self, c: Vec3) -> usize {
-        (((c[self.axis] - self.lo) * self.scale) as usize).min(self.bins - 1)
+    /// Bin of a doubled centroid along each axis (the same arithmetic for binning and partitioning,
+    /// so both always agree).
+    #[inline(always)]
+    fn bins_of(&self, c2: F4) -> [usize; 4] {
+        // Clamped before the conversion (a NaN becomes 0: `max` keeps its second operand).
+        ((c2 - self.lo) * self.scale)
+            .max(F4::splat(0.0))
+            .min(F4::splat((self.bins - 1) as f32))
+            .to_i32()
+            .map(|b| b as usize)
     }
 }
 
 /// Per-axis bins of references: box and count.
 #[derive(Clone, Copy)]
 struct Bins {
-    boxes: [[Aabb; BINS]; 3],
-    counts: [[usize; BINS]; 3],
+    boxes: [[Box3; BINS]; 3],
+    counts: [[u32; BINS]; 3],
 }
 
 impl Bins {
-    const EMPTY: Bins = Bins {
-        boxes: [[Aabb::EMPTY; BINS]; 3],
-        counts: [[0; BINS]; 3],
-    };
-
-    /// Bins of a run of references (built in place: a `Bins` is too big to pass around per reference).
-    fn of(splits: &[Option<Split>; 3], refs: &[PrimRef]) -> Self {
-        let mut bins = Bins::EMPTY;
-        for r in refs {
-            bins.add(splits, r);
+    fn empty() -> Self {
+        Bins {
+            boxes: [[Box3::empty(); BINS]; 3],
+            counts: [[0; BINS]; 3],
         }
-        bins
     }
 
-    fn add(&mut self, splits: &[Option<Split>; 3], r: &PrimRef) {
-        for (axis, s) in splits.iter().enumerate() {
-            if let Some(s) = s {
-                let b = s.bin_of(r.centroid);
-                self.boxes[axis][b] = self.boxes[axis][b].union(r.bounds);
-                self.counts[axis][b] += 1;
+    /// Bins of a run of references.
+    fn of(s: &Split, refs: &[PrimRef]) -> Self {
+        let mut bins = Bins::empty();
+        for r in refs {
+            let b = s.bins_of(r.c2());
+            let bounds = r.bounds();
+            for (axis, &k) in b[..3].iter().enumerate() {
+                bins.boxes[axis][k] = bins.boxes[axis][k].union(bounds);
+                bins.counts[axis][k] += 1;
             }
         }
+        bins
     }
 
     fn merge(mut self, o: Bins) -> Self {
@@ -547,47 +643,55 @@ impl Bins {
 }
 
 /// The SAH cost of intersecting `n` triangles: leaves are tested a packet of four at a time.
-fn packets(n: usize) -> f32 {
+fn packets(n: u32) -> f32 {
     n.div_ceil(4) as f32
 }
 
 /// The binned-SAH split with the lowest cost, if it beats making a leaf.
-fn find_split(refs: &[PrimRef], bounds: Aabb, cb: Aabb) -> Option<Split> {
+fn find_split(refs: &[PrimRef], bounds: &Box3, cb: &Box3) -> Option<Split> {
     let nb = (refs.len() / 2).clamp(4, BINS);
-    let splits: [Option<Split>; 3] = std::array::from_fn(|axis| {
-        let extent = cb.max[axis] - cb.min[axis];
-        // Also skips a NaN extent.
-        (extent.partial_cmp(&0.0) == Some(std::cmp::Ordering::Greater)).then(|| Split {
-            axis,
-            bin: 0,
-            bins: nb,
-            lo: cb.min[axis],
-            scale: nb as f32 / extent,
-        })
+    let (lo, hi) = (cb.lo.to_array(), cb.hi.to_array());
+    // Axes along which the centroids do not spread (or NaN) get scale 0: one bin, no split.
+    let scale: [f32; 4] = std::array::from_fn(|axis| {
+        let extent = hi[axis] - lo[axis];
+        if axis < 3 && extent > 0.0 {
+            nb as f32 / extent
+        } else {
+            0.0
+        }
     });
+    let split0 = Split {
+        axis: 0,
+        bin: 0,
+        bins: nb,
+        lo: cb.lo,
+        scale: F4::load(&scale),
+    };
     let bins = if refs.len() > PARALLEL_BINNING {
         refs.par_chunks(8192)
-            .map(|c| Bins::of(&splits, c))
-            .reduce(|| Bins::EMPTY, Bins::merge)
+            .map(|c| Bins::of(&split0, c))
+            .reduce(Bins::empty, Bins::merge)
     } else {
-        Bins::of(&splits, refs)
+        Bins::of(&split0, refs)
     };
-    let leaf_cost = packets(refs.len());
-    let parent_area = bounds.surface_area().max(f32::MIN_POSITIVE);
+    let leaf_cost = packets(refs.len() as u32);
+    let parent_area = bounds.half_area().max(f32::MIN_POSITIVE);
     let mut best: Option<(f32, Split)> = None;
-    for (axis, split0) in splits.iter().enumerate() {
-        let Some(split0) = split0 else { continue };
+    for (axis, &s) in scale[..3].iter().enumerate() {
+        if s == 0.0 {
+            continue;
+        }
         let (boxes, counts) = (&bins.boxes[axis], &bins.counts[axis]);
         let mut right_area = [0.0f32; BINS];
-        let mut right_count = [0usize; BINS];
-        let (mut acc, mut n) = (Aabb::EMPTY, 0);
+        let mut right_count = [0u32; BINS];
+        let (mut acc, mut n) = (Box3::empty(), 0);
         for b in (1..nb).rev() {
             acc = acc.union(boxes[b]);
             n += counts[b];
-            right_area[b] = acc.surface_area();
+            right_area[b] = acc.half_area();
             right_count[b] = n;
         }
-        let (mut acc, mut n) = (Aabb::EMPTY, 0);
+        let (mut acc, mut n) = (Box3::empty(), 0);
         for b in 1..nb {
             acc = acc.union(boxes[b - 1]);
             n += counts[b - 1];
@@ -595,10 +699,17 @@ fn find_split(refs: &[PrimRef], bounds: Aabb, cb: Aabb) -> Option<Split> {
                 continue;
             }
             let cost = TRAVERSAL_COST
-                + (acc.surface_area() * packets(n) + right_area[b] * packets(right_count[b]))
+                + (acc.half_area() * packets(n) + right_area[b] * packets(right_count[b]))
                     / parent_area;
             if best.is_none_or(|(c, _)| cost < c) {
-                best = Some((cost, Split { bin: b, ..*split0 }));
+                best = Some((
+                    cost,
+                    Split {
+                        axis,
+                        bin: b,
+                        ..split0
+                    },
+                ));
             }
         }
     }

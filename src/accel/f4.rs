@@ -34,6 +34,12 @@ mod imp {
             unsafe { _mm_storeu_ps(a.as_mut_ptr(), self.0) };
             a
         }
+        /// Truncated towards zero (for values in the i32 range).
+        #[inline(always)]
+        pub fn to_i32(self) -> [i32; 4] {
+            // SAFETY: SSE2 baseline; `__m128i` and `[i32; 4]` have the same size.
+            unsafe { std::mem::transmute::<__m128i, [i32; 4]>(_mm_cvttps_epi32(self.0)) }
+        }
         #[inline(always)]
         pub fn min(self, o: Self) -> Self {
             // SAFETY: SSE baseline.
@@ -129,6 +135,11 @@ mod imp {
         #[inline(always)]
         pub fn to_array(self) -> [f32; 4] {
             self.0
+        }
+        /// Truncated towards zero (for values in the i32 range).
+        #[inline(always)]
+        pub fn to_i32(self) -> [i32; 4] {
+            self.0.map(|x| x as i32)
         }
         #[inline(always)]
         fn zip(self, o: Self, f: impl Fn(f32, f32) -> f32) -> Self {
