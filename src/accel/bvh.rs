@@ -37,22 +37,25 @@ struct Node {
     count: u32,
 }
 
-/// A 4-wide node: the boxes of up to four children side by side (one array per bound), and for each
+/// Children per node of the traversed tree (a multiple of four).
+const W: usize = 8;
+
+/// A `W`-wide node: the boxes of up to `W` children side by side (one array per bound), and for each
 /// child either an inner node index (`count == 0`) or a leaf of `count` triangles from `child`.
-/// Unused lanes hold an empty box, which no ray enters. 128 bytes, two cache lines.
+/// Unused lanes hold an empty box, which no ray enters, and child 0. 32 W bytes.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
-struct Node4 {
-    /// Rows of four lanes: lower x, y, z, then upper x, y, z.
-    b: [[f32; 4]; 6],
-    child: [u32; 4],
-    count: [u32; 4],
+struct NodeW {
+    /// Rows of `W` lanes: lower x, y, z, then upper x, y, z.
+    b: [[f32; W]; 6],
+    child: [u32; W],
+    count: [u32; W],
 }
 
 pub struct Bvh {
     scene: Arc<Scene>,
     /// Root at index 0 (absent for an empty scene).
-    nodes: Vec<Node4>,
+    nodes: Vec<NodeW>,
     /// World-space triangles in packets of four; a leaf is a run of packets.
     tris: Vec<Tri4>,
     /// Identity of each packet lane (`4 * packet + lane`).
@@ -113,7 +116,7 @@ impl Bvh {
                 tris: &tris,
                 ids: &ids,
             };
-            collapse(&source, 0, &mut out);
+            collapse(&source, 0, order.len(), &mut out);
         }
         Self {
             objects: ObjectBvh::build(&scene.csg),
@@ -147,7 +150,7 @@ impl Bvh {
     /// Bytes held by the structure (nodes, triangles, ids).
     fn bytes(&self) -> usize {
         self.moving.as_ref().map_or(0, |m| m.memory_bytes())
-            + self.nodes.len() * std::mem::size_of::<Node4>()
+            + self.nodes.len() * std::mem::size_of::<NodeW>()
             + self.tris.len() * std::mem::size_of::<Tri4>()
             + self.ids.len() * std::mem::size_of::<TriId>()
     }
@@ -163,7 +166,7 @@ impl Bvh {
         let sh = RayShear::new(ray.d);
         let inv = ray.d.recip().to_array();
         let o = ray.o.to_array();
-        // Per axis, the bound rows entered first and last (`Node4::b`: lo x y z, hi x y z).
+        // Per axis, the bound rows entered first and last (`NodeW::b`: lo x y z, hi x y z).
         let near: [usize; 3] = std::array::from_fn(|a| a + 3 * (inv[a] < 0.0) as usize);
         let far: [usize; 3] = std::array::from_fn(|a| a + 3 * (inv[a] >= 0.0) as usize);
         let inv4 = inv.map(F4::splat);
@@ -176,7 +179,7 @@ impl Bvh {
         let mut t_max = ray.t_max;
         let mut best: Option<Hit> = None;
         // Entries: (child, count, entry distance); inner nodes have count 0.
-        let mut stack = [(0u32, 0u32, 0.0f32); 64];
+        let mut stack = [(0u32, 0u32, 0.0f32); 16 * W];
         let mut sp = 0;
         let (mut child, mut count) = (0u32, 0u32);
         loop {
@@ -212,17 +215,25 @@ impl Bvh {
                 }
             } else {
                 let node = &self.nodes[child as usize];
-                let slab =
-                    |row: usize, axis: usize| (F4::load(&node.b[row]) - o4[axis]) * inv4[axis];
-                // Selects (maxps/minps) that keep the running bound when a distance is NaN (0 * inf on
-                // a slab face).
-                let t0 = slab(near[2], 2).max(slab(near[1], 1).max(slab(near[0], 0).max(t_min4)));
-                let t1 = slab(far[2], 2)
-                    .min(slab(far[1], 1).min(slab(far[0], 0).min(F4::splat(f32::INFINITY))));
-                let t1 = (t1 * far_scale).min(F4::splat(t_max));
-                let mut mask = t0.le(t1).bits();
+                // Four lanes at a time: entry distances and a bit per child hit.
+                let mut t0 = [0.0f32; W];
+                let mut mask = 0;
+                for q in 0..W / 4 {
+                    let slab = |row: usize, axis: usize| {
+                        let lanes: &[f32; 4] = node.b[row][4 * q..4 * q + 4].try_into().unwrap();
+                        (F4::load(lanes) - o4[axis]) * inv4[axis]
+                    };
+                    // Selects (maxps/minps) that keep the running bound when a distance is NaN
+                    // (0 * inf on a slab face).
+                    let tn =
+                        slab(near[2], 2).max(slab(near[1], 1).max(slab(near[0], 0).max(t_min4)));
+                    let tf = slab(far[2], 2)
+                        .min(slab(far[1], 1).min(slab(far[0], 0).min(F4::splat(f32::INFINITY))));
+                    let tf = (tf * far_scale).min(F4::splat(t_max));
+                    mask |= tn.le(tf).bits() << (4 * q);
+                    t0[4 * q..4 * q + 4].copy_from_slice(&tn.to_array());
+                }
                 if mask != 0 {
-                    let t0 = t0.to_array();
                     let first = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
                     if mask == 0 {
@@ -244,8 +255,8 @@ impl Bvh {
                         count = node.count[first];
                         continue;
                     }
-                    // Sort the hit children nearest first (insertion into at most four).
-                    let mut order = [(0.0f32, 0usize); 4];
+                    // Sort the hit children nearest first (insertion into at most W).
+                    let mut order = [(0.0f32, 0usize); W];
                     order[0] = (t0[first], first);
                     let mut n = 1;
                     while mask != 0 {
@@ -295,7 +306,7 @@ struct Source<'a> {
 
 /// The 4-wide tree being built, with its triangle packets.
 struct Collapsed {
-    nodes: Vec<Node4>,
+    nodes: Vec<NodeW>,
     packets: Vec<Tri4>,
     ids: Vec<TriId>,
 }
@@ -321,12 +332,50 @@ fn pack_leaf(src: &Source, leaf: &Node, out: &mut Collapsed) -> u32 {
     first
 }
 
-/// Turns the binary tree below `at` into 4-wide nodes appended to `out`; returns the new node's index.
-fn collapse(src: &Source, at: usize, out: &mut Collapsed) -> u32 {
+/// Subtrees of at least this many references are collapsed in parallel.
+const PARALLEL_COLLAPSE: usize = 1 << 14;
+
+impl Collapsed {
+    fn new() -> Self {
+        Self {
+            nodes: Vec::new(),
+            packets: Vec::new(),
+            ids: Vec::new(),
+        }
+    }
+
+    /// Appends a separately collapsed subtree; returns the index of its root.
+    fn append(&mut self, sub: Collapsed) -> u32 {
+        let (node_base, packet_base) = (self.nodes.len() as u32, self.packets.len() as u32);
+        self.nodes.extend(sub.nodes.into_iter().map(|mut n| {
+            for lane in 0..W {
+                if n.count[lane] > 0 {
+                    n.child[lane] += packet_base;
+                } else if n.child[lane] != 0 {
+                    // (Child 0, the subtree's root, is nobody's child: 0 marks an unused lane.)
+                    n.child[lane] += node_base;
+                }
+            }
+            n
+        }));
+        self.packets.extend(sub.packets);
+        self.ids.extend(sub.ids);
+        node_base
+    }
+}
+
+/// Turns the binary tree below `at` (over `size` references) into `W`-wide nodes appended to `out`;
+/// returns the new node's index.
+fn collapse(src: &Source, at: usize, size: usize, out: &mut Collapsed) -> u32 {
     let bin = src.bin;
     let inner = |i: usize| bin[i].count == 0;
-    // Children of binary inner node `i`: the left one follows it, the right one is at `index`.
-    let children = |i: usize| [i + 1, bin[i].index as usize];
+    // Children of binary inner node `i` over `n` references: the left one follows it, the right one
+    // is at `index`, and the left one's slots (twice its references) lie in between.
+    let children = |(i, n): (usize, usize)| {
+        let r = bin[i].index as usize;
+        let left = (r - i) / 2;
+        [(i + 1, left), (r, n - left)]
+    };
     let area = |i: usize| {
         let n = &bin[i];
         Aabb {
@@ -335,19 +384,19 @@ fn collapse(src: &Source, at: usize, out: &mut Collapsed) -> u32 {
         }
         .surface_area()
     };
-    // Open the largest inner child until there are four children (or only leaves left).
-    let mut kids = [0usize; 4];
+    // Open the largest inner child until there are W children (or only leaves left).
+    let mut kids = [(0usize, 0usize); W];
     let mut n = if inner(at) {
-        kids[..2].copy_from_slice(&children(at));
+        kids[..2].copy_from_slice(&children((at, size)));
         2
     } else {
-        kids[0] = at;
+        kids[0] = (at, size);
         1
     };
-    while n < 4 {
+    while n < W {
         let Some(pos) = (0..n)
-            .filter(|&k| inner(kids[k]))
-            .max_by(|&a, &b| area(kids[a]).total_cmp(&area(kids[b])))
+            .filter(|&k| inner(kids[k].0))
+            .max_by(|&a, &b| area(kids[a].0).total_cmp(&area(kids[b].0)))
         else {
             break;
         };
@@ -357,24 +406,40 @@ fn collapse(src: &Source, at: usize, out: &mut Collapsed) -> u32 {
         n += 1;
     }
     let index = out.nodes.len();
-    out.nodes.push(Node4 {
+    out.nodes.push(NodeW {
         b: [
-            [f32::INFINITY; 4],
-            [f32::INFINITY; 4],
-            [f32::INFINITY; 4],
-            [f32::NEG_INFINITY; 4],
-            [f32::NEG_INFINITY; 4],
-            [f32::NEG_INFINITY; 4],
+            [f32::INFINITY; W],
+            [f32::INFINITY; W],
+            [f32::INFINITY; W],
+            [f32::NEG_INFINITY; W],
+            [f32::NEG_INFINITY; W],
+            [f32::NEG_INFINITY; W],
         ],
-        child: [0; 4],
-        count: [0; 4],
+        child: [0; W],
+        count: [0; W],
     });
-    for (lane, &k) in kids[..n].iter().enumerate() {
+    let kids = &kids[..n];
+    let mut subs: Vec<Option<Collapsed>> = if size >= PARALLEL_COLLAPSE {
+        kids.par_iter()
+            .map(|&(k, kn)| {
+                inner(k).then(|| {
+                    let mut sub = Collapsed::new();
+                    collapse(src, k, kn, &mut sub);
+                    sub
+                })
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    for (lane, &(k, kn)) in kids.iter().enumerate() {
         let c = bin[k];
         let (child, count) = if c.count > 0 {
             (pack_leaf(src, &c, out), c.count)
+        } else if let Some(sub) = subs.get_mut(lane).and_then(Option::take) {
+            (out.append(sub), 0)
         } else {
-            (collapse(src, k, out), 0)
+            (collapse(src, k, kn, out), 0)
         };
         let node = &mut out.nodes[index];
         for axis in 0..3 {
