@@ -64,6 +64,9 @@ pub struct Bvh {
     objects: ObjectBvh,
     /// Instances that move during the shutter (absent for static scenes).
     moving: Option<Box<MovingSet>>,
+    /// Whether the CPU has AVX, for the 8-lane box test.
+    #[cfg(target_arch = "x86_64")]
+    avx: bool,
 }
 
 impl Bvh {
@@ -125,6 +128,8 @@ impl Bvh {
             tris: out.packets,
             ids: out.ids,
             moving: None,
+            #[cfg(target_arch = "x86_64")]
+            avx: W == 8 && std::arch::is_x86_feature_detected!("avx"),
         }
     }
 
@@ -156,26 +161,44 @@ impl Bvh {
     }
 
     /// Walks the tree front to back, keeping the closest accepted hit; with `any`, returns the first.
-    /// The nearest child hit goes on without a trip through the stack; the others are pushed
-    /// farthest first (in lane order for `any`).
     #[inline(always)]
     fn traverse(&self, ray: &Ray, any: bool) -> Option<Hit> {
         if self.nodes.is_empty() {
             return None;
         }
+        #[cfg(target_arch = "x86_64")]
+        if self.avx {
+            // SAFETY: `avx` is set only where the CPU has AVX.
+            return unsafe {
+                if any {
+                    self.walk_avx::<true>(ray)
+                } else {
+                    self.walk_avx::<false>(ray)
+                }
+            };
+        }
+        if any {
+            self.walk::<true, SseSlabs>(ray)
+        } else {
+            self.walk::<false, SseSlabs>(ray)
+        }
+    }
+
+    /// `walk` with 8-lane AVX box tests (and the rest VEX-encoded). Rust never fuses a multiply and
+    /// an add on its own, so the hits are bit-identical to the SSE walk's.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn walk_avx<const ANY: bool>(&self, ray: &Ray) -> Option<Hit> {
+        self.walk::<ANY, AvxSlabs>(ray)
+    }
+
+    /// The walk proper. The nearest child hit goes on without a trip through the stack; the others
+    /// are pushed farthest first (in lane order for `ANY`).
+    #[inline(always)]
+    fn walk<const ANY: bool, S: Slabs>(&self, ray: &Ray) -> Option<Hit> {
+        let any = ANY;
         let sh = RayShear::new(ray.d);
-        let inv = ray.d.recip().to_array();
-        let o = ray.o.to_array();
-        // Per axis, the bound rows entered first and last (`NodeW::b`: lo x y z, hi x y z).
-        let near: [usize; 3] = std::array::from_fn(|a| a + 3 * (inv[a] < 0.0) as usize);
-        let far: [usize; 3] = std::array::from_fn(|a| a + 3 * (inv[a] >= 0.0) as usize);
-        let inv4 = inv.map(F4::splat);
-        let o4 = o.map(F4::splat);
-        let t_min4 = F4::splat(ray.t_min);
-        // Ize 2013: widen the far slab distance by 1 + 2 gamma(3) so that rounding never culls a box
-        // that the ray touches. Scaling the smallest far distance is the same as scaling each (the
-        // rounded product is monotonic in its operand).
-        let far_scale = F4::splat(1.0 + 2.0 * gamma(3));
+        let slabs = S::new(ray);
         let mut t_max = ray.t_max;
         let mut best: Option<Hit> = None;
         // Entries: (child, count, entry distance); inner nodes have count 0.
@@ -215,24 +238,7 @@ impl Bvh {
                 }
             } else {
                 let node = &self.nodes[child as usize];
-                // Four lanes at a time: entry distances and a bit per child hit.
-                let mut t0 = [0.0f32; W];
-                let mut mask = 0;
-                for q in 0..W / 4 {
-                    let slab = |row: usize, axis: usize| {
-                        let lanes: &[f32; 4] = node.b[row][4 * q..4 * q + 4].try_into().unwrap();
-                        (F4::load(lanes) - o4[axis]) * inv4[axis]
-                    };
-                    // Selects (maxps/minps) that keep the running bound when a distance is NaN
-                    // (0 * inf on a slab face).
-                    let tn =
-                        slab(near[2], 2).max(slab(near[1], 1).max(slab(near[0], 0).max(t_min4)));
-                    let tf = slab(far[2], 2)
-                        .min(slab(far[1], 1).min(slab(far[0], 0).min(F4::splat(f32::INFINITY))));
-                    let tf = (tf * far_scale).min(F4::splat(t_max));
-                    mask |= tn.le(tf).bits() << (4 * q);
-                    t0[4 * q..4 * q + 4].copy_from_slice(&tn.to_array());
-                }
+                let (mut mask, t0) = slabs.test(node, t_max);
                 if mask != 0 {
                     let first = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
@@ -292,6 +298,135 @@ impl Bvh {
                     break;
                 }
             }
+        }
+    }
+}
+
+/// The ray/box test of a node's children, with its per-ray constants: for each child, the distance
+/// at which the ray enters its box, and a bit if it does within `(t_min, t_max)`.
+///
+/// Ize 2013: the far slab distance is widened by 1 + 2 gamma(3) so that rounding never culls a box
+/// that the ray touches. Scaling the smallest far distance is the same as scaling each (the rounded
+/// product is monotonic in its operand). Minima and maxima are selects (minps/maxps) that keep the
+/// running bound when a distance is NaN (0 * inf on a slab face).
+trait Slabs {
+    fn new(ray: &Ray) -> Self;
+    fn test(&self, node: &NodeW, t_max: f32) -> (u32, [f32; W]);
+}
+
+const FAR_SCALE: f32 = 1.0 + 2.0 * gamma(3);
+
+/// Per axis, the bound rows entered first and last (`NodeW::b`: lo x y z, hi x y z).
+fn near_far(inv: [f32; 3]) -> ([usize; 3], [usize; 3]) {
+    (
+        std::array::from_fn(|a| a + 3 * (inv[a] < 0.0) as usize),
+        std::array::from_fn(|a| a + 3 * (inv[a] >= 0.0) as usize),
+    )
+}
+
+/// Four lanes at a time.
+struct SseSlabs {
+    o: [F4; 3],
+    inv: [F4; 3],
+    t_min: F4,
+    near: [usize; 3],
+    far: [usize; 3],
+}
+
+impl Slabs for SseSlabs {
+    #[inline(always)]
+    fn new(ray: &Ray) -> Self {
+        let inv = ray.d.recip().to_array();
+        let (near, far) = near_far(inv);
+        Self {
+            o: ray.o.to_array().map(F4::splat),
+            inv: inv.map(F4::splat),
+            t_min: F4::splat(ray.t_min),
+            near,
+            far,
+        }
+    }
+
+    #[inline(always)]
+    fn test(&self, node: &NodeW, t_max: f32) -> (u32, [f32; W]) {
+        let (near, far) = (&self.near, &self.far);
+        let mut t0 = [0.0f32; W];
+        let mut mask = 0;
+        for q in 0..W / 4 {
+            let slab = |row: usize, axis: usize| {
+                let lanes: &[f32; 4] = node.b[row][4 * q..4 * q + 4].try_into().unwrap();
+                (F4::load(lanes) - self.o[axis]) * self.inv[axis]
+            };
+            let tn = slab(near[2], 2).max(slab(near[1], 1).max(slab(near[0], 0).max(self.t_min)));
+            let tf = slab(far[2], 2)
+                .min(slab(far[1], 1).min(slab(far[0], 0).min(F4::splat(f32::INFINITY))));
+            let tf = (tf * F4::splat(FAR_SCALE)).min(F4::splat(t_max));
+            mask |= tn.le(tf).bits() << (4 * q);
+            t0[4 * q..4 * q + 4].copy_from_slice(&tn.to_array());
+        }
+        (mask, t0)
+    }
+}
+
+/// Eight lanes at once (only called from AVX code: `Bvh::walk_avx`).
+#[cfg(target_arch = "x86_64")]
+struct AvxSlabs {
+    o: [std::arch::x86_64::__m256; 3],
+    inv: [std::arch::x86_64::__m256; 3],
+    t_min: std::arch::x86_64::__m256,
+    near: [usize; 3],
+    far: [usize; 3],
+}
+
+#[cfg(target_arch = "x86_64")]
+impl Slabs for AvxSlabs {
+    #[inline(always)]
+    fn new(ray: &Ray) -> Self {
+        use std::arch::x86_64::*;
+        let inv = ray.d.recip().to_array();
+        let (near, far) = near_far(inv);
+        // SAFETY: only reached from `walk_avx`, which runs where the CPU has AVX.
+        unsafe {
+            Self {
+                o: ray.o.to_array().map(|x| _mm256_set1_ps(x)),
+                inv: inv.map(|x| _mm256_set1_ps(x)),
+                t_min: _mm256_set1_ps(ray.t_min),
+                near,
+                far,
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn test(&self, node: &NodeW, t_max: f32) -> (u32, [f32; W]) {
+        use std::arch::x86_64::*;
+        const { assert!(W == 8) };
+        let (near, far) = (&self.near, &self.far);
+        // SAFETY: only reached from `walk_avx`, which runs where the CPU has AVX; rows are W = 8
+        // floats.
+        unsafe {
+            macro_rules! slab {
+                ($row:expr, $axis:expr) => {
+                    _mm256_mul_ps(
+                        _mm256_sub_ps(_mm256_loadu_ps(node.b[$row].as_ptr()), self.o[$axis]),
+                        self.inv[$axis],
+                    )
+                };
+            }
+            let tn = _mm256_max_ps(slab!(near[0], 0), self.t_min);
+            let tn = _mm256_max_ps(slab!(near[1], 1), tn);
+            let tn = _mm256_max_ps(slab!(near[2], 2), tn);
+            let tf = _mm256_min_ps(slab!(far[0], 0), _mm256_set1_ps(f32::INFINITY));
+            let tf = _mm256_min_ps(slab!(far[1], 1), tf);
+            let tf = _mm256_min_ps(slab!(far[2], 2), tf);
+            let tf = _mm256_min_ps(
+                _mm256_mul_ps(tf, _mm256_set1_ps(FAR_SCALE)),
+                _mm256_set1_ps(t_max),
+            );
+            let mask = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(tn, tf)) as u32;
+            let mut t0 = [0.0f32; W];
+            _mm256_storeu_ps(t0.as_mut_ptr(), tn);
+            (mask, t0)
         }
     }
 }
@@ -827,7 +962,14 @@ mod tests {
                 ),
             ],
         );
-        let bvh = Bvh::build(s.clone());
+        // The walk this CPU takes, and (on x86_64) the portable SSE one too.
+        #[allow(unused_mut)]
+        let mut bvhs = vec![Bvh::build(s.clone())];
+        #[cfg(target_arch = "x86_64")]
+        bvhs.push(Bvh {
+            avx: false,
+            ..Bvh::build(s.clone())
+        });
         let mut rng = 0x1234_5678u64;
         let mut next = || {
             rng ^= rng << 13;
@@ -845,9 +987,11 @@ mod tests {
             let d = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize();
             let ray = Ray::new(o, d);
             let want = brute(&s, &ray);
-            let got = bvh.intersect(&ray).map(|h| (h.t, h.inst, h.prim));
-            assert_eq!(got, want, "ray {ray:?}");
-            assert_eq!(bvh.occluded(&ray), want.is_some());
+            for bvh in &bvhs {
+                let got = bvh.intersect(&ray).map(|h| (h.t, h.inst, h.prim));
+                assert_eq!(got, want, "ray {ray:?}");
+                assert_eq!(bvh.occluded(&ray), want.is_some());
+            }
             hits += want.is_some() as u32;
         }
         assert!(hits > 2000, "test rays should hit often, hit {hits}");
@@ -876,16 +1020,24 @@ mod tests {
     fn axis_aligned_rays_inside_flat_boxes() {
         // Every node box of a planar grid is flat in z; rays parallel to it along x hit nothing,
         // and rays straight down the z axis through vertices always hit.
-        let bvh = Bvh::build(scene(
+        let s = scene(
             vec![generate::quad_grid(16)],
             vec![Instance::new(0, Mat4::IDENTITY)],
-        ));
-        for y in 0..=16 {
-            for x in 0..=16 {
-                let r = Ray::new(Vec3::new(x as f32, y as f32, 3.0), -Vec3::Z);
-                let h = bvh.intersect(&r).expect("a ray through a grid vertex hits");
-                assert!((h.t - 3.0).abs() < 1e-6);
-            }
+        );
+        #[allow(unused_mut)]
+        let mut bvhs = vec![Bvh::build(s.clone())];
+        #[cfg(target_arch = "x86_64")]
+        bvhs.push(Bvh {
+            avx: false,
+            ..Bvh::build(s)
+        });
+        for (bvh, y, x) in bvhs
+            .iter()
+            .flat_map(|b| (0..=16).flat_map(move |y| (0..=16).map(move |x| (b, y, x))))
+        {
+            let r = Ray::new(Vec3::new(x as f32, y as f32, 3.0), -Vec3::Z);
+            let h = bvh.intersect(&r).expect("a ray through a grid vertex hits");
+            assert!((h.t - 3.0).abs() < 1e-6);
         }
     }
 }
