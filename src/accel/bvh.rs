@@ -107,11 +107,7 @@ impl Bvh {
             build_node(&mut refs, 0, bounds, &mut bin, 0);
         }
         let order: Vec<u32> = refs.iter().map(|r| r.index()).collect();
-        let mut out = Collapsed {
-            nodes: Vec::with_capacity(tris.len() / 4 + 1),
-            packets: Vec::with_capacity(tris.len() / 2 + 1),
-            ids: Vec::with_capacity(tris.len() * 2),
-        };
+        let mut out = Collapsed::with_capacity(tris.len());
         if !order.is_empty() {
             let source = Source {
                 bin: &bin,
@@ -119,7 +115,13 @@ impl Bvh {
                 tris: &tris,
                 ids: &ids,
             };
-            collapse(&source, 0, order.len(), &mut out);
+            collapse(
+                &source,
+                0,
+                order.len(),
+                order.len() >= PARALLEL_COLLAPSE,
+                &mut out,
+            );
         }
         Self {
             objects: ObjectBvh::build(&scene.csg),
@@ -467,15 +469,16 @@ fn pack_leaf(src: &Source, leaf: &Node, out: &mut Collapsed) -> u32 {
     first
 }
 
-/// Subtrees of at least this many references are collapsed in parallel.
+/// Trees over at least this many references have the subtrees of their root collapsed in parallel.
 const PARALLEL_COLLAPSE: usize = 1 << 14;
 
 impl Collapsed {
-    fn new() -> Self {
+    /// Empty, with room for the tree over `n` references.
+    fn with_capacity(n: usize) -> Self {
         Self {
-            nodes: Vec::new(),
-            packets: Vec::new(),
-            ids: Vec::new(),
+            nodes: Vec::with_capacity(n / 4 + 1),
+            packets: Vec::with_capacity(n / 2 + 1),
+            ids: Vec::with_capacity(2 * n + 4),
         }
     }
 
@@ -500,8 +503,9 @@ impl Collapsed {
 }
 
 /// Turns the binary tree below `at` (over `size` references) into `W`-wide nodes appended to `out`;
-/// returns the new node's index.
-fn collapse(src: &Source, at: usize, size: usize, out: &mut Collapsed) -> u32 {
+/// returns the new node's index. With `parallel`, the subtrees of the new node are collapsed in
+/// parallel (each into its own arrays, then appended).
+fn collapse(src: &Source, at: usize, size: usize, parallel: bool, out: &mut Collapsed) -> u32 {
     let bin = src.bin;
     let inner = |i: usize| bin[i].count == 0;
     // Children of binary inner node `i` over `n` references: the left one follows it, the right one
@@ -554,12 +558,12 @@ fn collapse(src: &Source, at: usize, size: usize, out: &mut Collapsed) -> u32 {
         count: [0; W],
     });
     let kids = &kids[..n];
-    let mut subs: Vec<Option<Collapsed>> = if size >= PARALLEL_COLLAPSE {
+    let mut subs: Vec<Option<Collapsed>> = if parallel {
         kids.par_iter()
             .map(|&(k, kn)| {
                 inner(k).then(|| {
-                    let mut sub = Collapsed::new();
-                    collapse(src, k, kn, &mut sub);
+                    let mut sub = Collapsed::with_capacity(kn);
+                    collapse(src, k, kn, false, &mut sub);
                     sub
                 })
             })
@@ -574,7 +578,7 @@ fn collapse(src: &Source, at: usize, size: usize, out: &mut Collapsed) -> u32 {
         } else if let Some(sub) = subs.get_mut(lane).and_then(Option::take) {
             (out.append(sub), 0)
         } else {
-            (collapse(src, k, kn, out), 0)
+            (collapse(src, k, kn, false, out), 0)
         };
         let node = &mut out.nodes[index];
         for axis in 0..3 {
