@@ -3,6 +3,7 @@
 //! the compiler vectorises), front to back, with conservative slab tests (Ize 2013) and the watertight
 //! triangle test.
 
+use std::mem::MaybeUninit;
 use std::sync::Arc;
 
 use glam::Vec3;
@@ -204,7 +205,9 @@ impl Bvh {
         let mut t_max = ray.t_max;
         let mut best: Option<Hit> = None;
         // Entries: (child, count, entry distance); inner nodes have count 0.
-        let mut stack = [(0u32, 0u32, 0.0f32); 16 * W];
+        // Left uninitialised (clearing it cost more than some whole walks): only entries below `sp`,
+        // all written, are read.
+        let mut stack = [const { MaybeUninit::<(u32, u32, f32)>::uninit() }; 16 * W];
         let mut sp = 0;
         let (mut child, mut count) = (0u32, 0u32);
         loop {
@@ -256,7 +259,7 @@ impl Bvh {
                         while mask != 0 {
                             let l = mask.trailing_zeros() as usize;
                             mask &= mask - 1;
-                            stack[sp] = (node.child[l], node.count[l], 0.0);
+                            stack[sp].write((node.child[l], node.count[l], 0.0));
                             sp += 1;
                         }
                         child = node.child[first];
@@ -279,7 +282,7 @@ impl Bvh {
                         n += 1;
                     }
                     for &(t, l) in order[1..n].iter().rev() {
-                        stack[sp] = (node.child[l], node.count[l], t);
+                        stack[sp].write((node.child[l], node.count[l], t));
                         sp += 1;
                     }
                     let l = order[0].1;
@@ -294,7 +297,8 @@ impl Bvh {
                     return best;
                 }
                 sp -= 1;
-                let (c, n, t_enter) = stack[sp];
+                // SAFETY: entry `sp` was written by the push that last raised `sp` past it.
+                let (c, n, t_enter) = unsafe { stack[sp].assume_init() };
                 if t_enter <= t_max {
                     (child, count) = (c, n);
                     break;
