@@ -41,6 +41,28 @@ struct Node {
 /// Children per node of the traversed tree (a multiple of four).
 const W: usize = 8;
 
+impl Node {
+    /// `n` all-zero nodes, in memory that the allocator hands out zeroed (fresh pages from the
+    /// system for large trees): clearing the 2n - 1 slots of a big tree with stores took longer
+    /// than binning its top levels.
+    fn zeroed(n: usize) -> Vec<Node> {
+        if n == 0 {
+            return Vec::new();
+        }
+        let layout = std::alloc::Layout::array::<Node>(n).expect("node count fits in memory");
+        // SAFETY: the layout has a non-zero size; a `Node` is f32s and u32s only, for which all-zero
+        // bytes are a valid value; and the buffer comes from the global allocator with the layout of
+        // `n` nodes, as `Vec::from_raw_parts` requires for length and capacity `n`.
+        unsafe {
+            let p = std::alloc::alloc_zeroed(layout).cast::<Node>();
+            if p.is_null() {
+                std::alloc::handle_alloc_error(layout);
+            }
+            Vec::from_raw_parts(p, n, n)
+        }
+    }
+}
+
 /// A `W`-wide node: the boxes of up to `W` children side by side (one array per bound), and for each
 /// child either an inner node index (`count == 0`) or a leaf of `count` triangles from `child`.
 /// Unused lanes hold an empty box, which no ray enters, and child 0. 32 W bytes.
@@ -94,15 +116,7 @@ impl Bvh {
                 .map(|(i, t)| PrimRef::new(t, i as u32))
                 .collect()
         };
-        let mut bin = vec![
-            Node {
-                min: [0.0; 3],
-                index: 0,
-                max: [0.0; 3],
-                count: 0,
-            };
-            (2 * refs.len()).max(1) - 1
-        ];
+        let mut bin = Node::zeroed((2 * refs.len()).max(1) - 1);
         if !refs.is_empty() {
             let bounds = bounds_of(&refs);
             build_node(&mut refs, 0, bounds, &mut bin, 0);
