@@ -1,7 +1,8 @@
-//! The pure-Rust backend: a 4-wide BVH over world-space triangles, built by binned SAH in parallel
-//! and collapsed from the binary tree. Traversal tests four boxes at once (structure-of-arrays nodes
-//! the compiler vectorises), front to back, with conservative slab tests (Ize 2013) and the watertight
-//! triangle test.
+//! The pure-Rust backend: an 8-wide BVH over world-space triangles, built by binned SAH in parallel
+//! (packet-aware costs) and collapsed from the binary tree. Traversal tests a node's eight boxes at
+//! once (structure-of-arrays nodes; AVX where the CPU has it, two SSE halves otherwise), front to back
+//! for closest hits, with conservative slab tests (Ize 2013), and leaves' triangles four at a time
+//! with the watertight test (Woop 2013).
 
 use std::mem::MaybeUninit;
 use std::sync::Arc;
