@@ -1,13 +1,16 @@
-//! The pure-Rust backend: a 4-wide BVH over world-space triangles, built by binned SAH in parallel
-//! and collapsed from the binary tree. Traversal tests four boxes at once (structure-of-arrays nodes
-//! the compiler vectorises), front to back, with conservative slab tests (Ize 2013) and the watertight
-//! triangle test.
+//! The pure-Rust backend: an 8-wide BVH over world-space triangles, built by binned SAH in parallel
+//! (packet-aware costs) and collapsed from the binary tree. Traversal tests a node's eight boxes at
+//! once (structure-of-arrays nodes; AVX where the CPU has it, two SSE halves otherwise), front to back
+//! for closest hits, with conservative slab tests (Ize 2013), and leaves' triangles four at a time
+//! with the watertight test (Woop 2013).
 
+use std::mem::MaybeUninit;
 use std::sync::Arc;
 
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::f4::F4;
 use super::flat::{self, TriId};
 use super::motion::MovingSet;
 use super::objects::ObjectBvh;
@@ -20,13 +23,13 @@ use crate::scene::Scene;
 const BINS: usize = 16;
 /// Leaves never hold more than this many triangles.
 const MAX_LEAF: usize = 4;
-/// Relative cost of a ray/box test against a ray/triangle test, for the SAH.
+/// Relative cost of a ray/box test against a ray/triangle-packet test, for the SAH.
 const TRAVERSAL_COST: f32 = 1.0;
 /// Subtrees smaller than this are built on the current thread.
 const PARALLEL_THRESHOLD: usize = 4096;
 
-/// A node: bounds and either two children (`count == 0`, left child at `index`, right child at
-/// `index + 1`) or a leaf of `count` triangles starting at `index`. 32 bytes, two per cache line.
+/// A node of the binary tree: bounds and either two children (`count == 0`, left child right after
+/// it, right child at `index`) or a leaf of `count` triangles starting at `index`. 32 bytes, two per cache line.
 #[derive(Clone, Copy, Debug)]
 #[repr(C)]
 struct Node {
@@ -36,22 +39,47 @@ struct Node {
     count: u32,
 }
 
-/// A 4-wide node: the boxes of up to four children side by side (one array per bound), and for each
+/// Children per node of the traversed tree (a multiple of four).
+const W: usize = 8;
+
+impl Node {
+    /// `n` all-zero nodes, in memory that the allocator hands out zeroed (fresh pages from the
+    /// system for large trees): clearing the 2n - 1 slots of a big tree with stores took longer
+    /// than binning its top levels.
+    fn zeroed(n: usize) -> Vec<Node> {
+        if n == 0 {
+            return Vec::new();
+        }
+        let layout = std::alloc::Layout::array::<Node>(n).expect("node count fits in memory");
+        // SAFETY: the layout has a non-zero size; a `Node` is f32s and u32s only, for which all-zero
+        // bytes are a valid value; and the buffer comes from the global allocator with the layout of
+        // `n` nodes, as `Vec::from_raw_parts` requires for length and capacity `n`.
+        unsafe {
+            let p = std::alloc::alloc_zeroed(layout).cast::<Node>();
+            if p.is_null() {
+                std::alloc::handle_alloc_error(layout);
+            }
+            Vec::from_raw_parts(p, n, n)
+        }
+    }
+}
+
+/// A `W`-wide node: the boxes of up to `W` children side by side (one array per bound), and for each
 /// child either an inner node index (`count == 0`) or a leaf of `count` triangles from `child`.
-/// Unused lanes hold an empty box, which no ray enters. 128 bytes, two cache lines.
+/// Unused lanes hold an empty box, which no ray enters, and child 0. 32 W bytes.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
-struct Node4 {
-    lo: [[f32; 4]; 3],
-    hi: [[f32; 4]; 3],
-    child: [u32; 4],
-    count: [u32; 4],
+struct NodeW {
+    /// Rows of `W` lanes: lower x, y, z, then upper x, y, z.
+    b: [[f32; W]; 6],
+    child: [u32; W],
+    count: [u32; W],
 }
 
 pub struct Bvh {
     scene: Arc<Scene>,
     /// Root at index 0 (absent for an empty scene).
-    nodes: Vec<Node4>,
+    nodes: Vec<NodeW>,
     /// World-space triangles in packets of four; a leaf is a run of packets.
     tris: Vec<Tri4>,
     /// Identity of each packet lane (`4 * packet + lane`).
@@ -60,14 +88,9 @@ pub struct Bvh {
     objects: ObjectBvh,
     /// Instances that move during the shutter (absent for static scenes).
     moving: Option<Box<MovingSet>>,
-}
-
-/// Build-time reference to one triangle.
-#[derive(Clone, Copy)]
-struct PrimRef {
-    bounds: Aabb,
-    centroid: Vec3,
-    index: u32,
+    /// Whether the CPU has AVX, for the 8-lane box test.
+    #[cfg(target_arch = "x86_64")]
+    avx: bool,
 }
 
 impl Bvh {
@@ -83,25 +106,24 @@ impl Bvh {
 
     /// A BVH over exactly these triangles (hits report `ids`), in whatever space they are given.
     pub fn from_triangles(scene: Arc<Scene>, tris: Vec<[Vec3; 3]>, ids: Vec<TriId>) -> Self {
-        let mut refs: Vec<PrimRef> = tris
-            .iter()
-            .enumerate()
-            .map(|(i, t)| {
-                let bounds = Aabb::from_points(*t);
-                PrimRef {
-                    bounds,
-                    centroid: bounds.center(),
-                    index: i as u32,
-                }
-            })
-            .collect();
-        let bin = build_subtree(&mut refs, 0);
-        let order: Vec<u32> = refs.iter().map(|r| r.index).collect();
-        let mut out = Collapsed {
-            nodes: Vec::with_capacity(bin.len() / 2 + 1),
-            packets: Vec::with_capacity(tris.len() / 2 + 1),
-            ids: Vec::with_capacity(tris.len() * 2),
+        let mut refs: Vec<PrimRef> = if tris.len() > PARALLEL_THRESHOLD {
+            tris.par_iter()
+                .enumerate()
+                .map(|(i, t)| PrimRef::new(t, i as u32))
+                .collect()
+        } else {
+            tris.iter()
+                .enumerate()
+                .map(|(i, t)| PrimRef::new(t, i as u32))
+                .collect()
         };
+        let mut bin = Node::zeroed((2 * refs.len()).max(1) - 1);
+        if !refs.is_empty() {
+            let bounds = bounds_of(&refs);
+            build_node(&mut refs, 0, bounds, &mut bin, 0);
+        }
+        let order: Vec<u32> = refs.iter().map(|r| r.index()).collect();
+        let mut out = Collapsed::with_capacity(tris.len());
         if !order.is_empty() {
             let source = Source {
                 bin: &bin,
@@ -109,7 +131,13 @@ impl Bvh {
                 tris: &tris,
                 ids: &ids,
             };
-            collapse(&source, 0, &mut out);
+            collapse(
+                &source,
+                0,
+                order.len(),
+                order.len() >= PARALLEL_COLLAPSE,
+                &mut out,
+            );
         }
         Self {
             objects: ObjectBvh::build(&scene.csg),
@@ -118,6 +146,8 @@ impl Bvh {
             tris: out.packets,
             ids: out.ids,
             moving: None,
+            #[cfg(target_arch = "x86_64")]
+            avx: W == 8 && std::arch::is_x86_feature_detected!("avx"),
         }
     }
 
@@ -143,7 +173,7 @@ impl Bvh {
     /// Bytes held by the structure (nodes, triangles, ids).
     fn bytes(&self) -> usize {
         self.moving.as_ref().map_or(0, |m| m.memory_bytes())
-            + self.nodes.len() * std::mem::size_of::<Node4>()
+            + self.nodes.len() * std::mem::size_of::<NodeW>()
             + self.tris.len() * std::mem::size_of::<Tri4>()
             + self.ids.len() * std::mem::size_of::<TriId>()
     }
@@ -154,33 +184,57 @@ impl Bvh {
         if self.nodes.is_empty() {
             return None;
         }
+        #[cfg(target_arch = "x86_64")]
+        if self.avx {
+            // SAFETY: `avx` is set only where the CPU has AVX.
+            return unsafe {
+                if any {
+                    self.walk_avx::<true>(ray)
+                } else {
+                    self.walk_avx::<false>(ray)
+                }
+            };
+        }
+        if any {
+            self.walk::<true, SseSlabs>(ray)
+        } else {
+            self.walk::<false, SseSlabs>(ray)
+        }
+    }
+
+    /// `walk` with 8-lane AVX box tests (and the rest VEX-encoded). Rust never fuses a multiply and
+    /// an add on its own, so the hits are bit-identical to the SSE walk's.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn walk_avx<const ANY: bool>(&self, ray: &Ray) -> Option<Hit> {
+        self.walk::<ANY, AvxSlabs>(ray)
+    }
+
+    /// The walk proper. The nearest child hit goes on without a trip through the stack; the others
+    /// are pushed farthest first (in lane order for `ANY`).
+    #[inline(always)]
+    fn walk<const ANY: bool, S: Slabs>(&self, ray: &Ray) -> Option<Hit> {
+        let any = ANY;
         let sh = RayShear::new(ray.d);
-        let inv = ray.d.recip();
-        // Ize 2013: widen the far slab distance by 1 + 2 gamma(3) so that rounding never culls a box
-        // that the ray touches.
-        let far_scale = 1.0 + 2.0 * gamma(3);
-        let o = ray.o.to_array();
-        let inv = inv.to_array();
-        // Per axis, which bound array is entered first.
-        let near_is_hi = [inv[0] < 0.0, inv[1] < 0.0, inv[2] < 0.0];
+        let slabs = S::new(ray);
         let mut t_max = ray.t_max;
         let mut best: Option<Hit> = None;
         // Entries: (child, count, entry distance); inner nodes have count 0.
-        let mut stack = [(0u32, 0u32, 0.0f32); 64];
-        let mut sp = 1;
-        while sp > 0 {
-            sp -= 1;
-            let (child, count, t_enter) = stack[sp];
-            if t_enter > t_max {
-                continue;
-            }
+        // Left uninitialised (clearing it cost more than some whole walks): only entries below `sp`,
+        // all written, are read.
+        let mut stack = [const { MaybeUninit::<(u32, u32, f32)>::uninit() }; 16 * W];
+        let mut sp = 0;
+        let (mut child, mut count) = (0u32, 0u32);
+        loop {
             if count > 0 {
                 let first = child as usize;
                 for packet in first..first + (count as usize).div_ceil(4) {
                     let h = triangle::intersect4(ray.o, &sh, &self.tris[packet], ray.t_min, t_max);
-                    for lane in 0..4 {
+                    let mut mask = h.mask;
+                    while mask != 0 {
+                        let lane = mask.trailing_zeros() as usize;
+                        mask &= mask - 1;
                         // t_max shrinks as lanes are accepted: later, farther lanes drop out.
-                        // (A miss is +inf, which fails too.)
                         if h.t[lane] >= t_max {
                             continue;
                         }
@@ -202,46 +256,199 @@ impl Bvh {
                         best = Some(hit);
                     }
                 }
-                continue;
-            }
-            let node = &self.nodes[child as usize];
-            let mut t0 = [ray.t_min; 4];
-            let mut t1 = [t_max; 4];
-            for axis in 0..3 {
-                let (near, far) = if near_is_hi[axis] {
-                    (&node.hi[axis], &node.lo[axis])
-                } else {
-                    (&node.lo[axis], &node.hi[axis])
-                };
-                for l in 0..4 {
-                    let tn = (near[l] - o[axis]) * inv[axis];
-                    let tf = (far[l] - o[axis]) * inv[axis] * far_scale;
-                    // Written as selects so they compile to maxps/minps; a NaN distance (0 * inf on a
-                    // slab face) fails the comparison and leaves the interval as it was.
-                    t0[l] = if tn > t0[l] { tn } else { t0[l] };
-                    t1[l] = if tf < t1[l] { tf } else { t1[l] };
-                }
-            }
-            // Push the children that were hit, farthest first, so the nearest is popped next.
-            let mut order = [(0.0f32, 0usize); 4];
-            let mut n = 0;
-            for l in 0..4 {
-                if t0[l] <= t1[l] {
-                    let mut k = n;
-                    while k > 0 && order[k - 1].0 < t0[l] {
-                        order[k] = order[k - 1];
-                        k -= 1;
+            } else {
+                let node = &self.nodes[child as usize];
+                let (mut mask, t0) = slabs.test(node, t_max);
+                if mask != 0 {
+                    let first = mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    if mask == 0 {
+                        // One child: go straight on.
+                        child = node.child[first];
+                        count = node.count[first];
+                        continue;
                     }
-                    order[k] = (t0[l], l);
-                    n += 1;
+                    if any {
+                        // Any hit will do: skip the sort (10% faster on shadow rays), go on with the
+                        // first child.
+                        while mask != 0 {
+                            let l = mask.trailing_zeros() as usize;
+                            mask &= mask - 1;
+                            stack[sp].write((node.child[l], node.count[l], 0.0));
+                            sp += 1;
+                        }
+                        child = node.child[first];
+                        count = node.count[first];
+                        continue;
+                    }
+                    // Sort the hit children nearest first (insertion into at most W).
+                    let mut order = [(0.0f32, 0usize); W];
+                    order[0] = (t0[first], first);
+                    let mut n = 1;
+                    while mask != 0 {
+                        let l = mask.trailing_zeros() as usize;
+                        mask &= mask - 1;
+                        let mut k = n;
+                        while k > 0 && order[k - 1].0 > t0[l] {
+                            order[k] = order[k - 1];
+                            k -= 1;
+                        }
+                        order[k] = (t0[l], l);
+                        n += 1;
+                    }
+                    for &(t, l) in order[1..n].iter().rev() {
+                        stack[sp].write((node.child[l], node.count[l], t));
+                        sp += 1;
+                    }
+                    let l = order[0].1;
+                    child = node.child[l];
+                    count = node.count[l];
+                    continue;
                 }
             }
-            for &(t, l) in &order[..n] {
-                stack[sp] = (node.child[l], node.count[l], t);
-                sp += 1;
+            // Pop the nearest pending child that can still hold a closer hit.
+            loop {
+                if sp == 0 {
+                    return best;
+                }
+                sp -= 1;
+                // SAFETY: entry `sp` was written by the push that last raised `sp` past it.
+                let (c, n, t_enter) = unsafe { stack[sp].assume_init() };
+                if t_enter <= t_max {
+                    (child, count) = (c, n);
+                    break;
+                }
             }
         }
-        best
+    }
+}
+
+/// The ray/box test of a node's children, with its per-ray constants: for each child, the distance
+/// at which the ray enters its box, and a bit if it does within `(t_min, t_max)`.
+///
+/// Ize 2013: the far slab distance is widened by 1 + 2 gamma(3) so that rounding never culls a box
+/// that the ray touches. Scaling the smallest far distance is the same as scaling each (the rounded
+/// product is monotonic in its operand). Minima and maxima are selects (minps/maxps) that keep the
+/// running bound when a distance is NaN (0 * inf on a slab face).
+trait Slabs {
+    fn new(ray: &Ray) -> Self;
+    fn test(&self, node: &NodeW, t_max: f32) -> (u32, [f32; W]);
+}
+
+const FAR_SCALE: f32 = 1.0 + 2.0 * gamma(3);
+
+/// Per axis, the bound rows entered first and last (`NodeW::b`: lo x y z, hi x y z).
+fn near_far(inv: [f32; 3]) -> ([usize; 3], [usize; 3]) {
+    (
+        std::array::from_fn(|a| a + 3 * (inv[a] < 0.0) as usize),
+        std::array::from_fn(|a| a + 3 * (inv[a] >= 0.0) as usize),
+    )
+}
+
+/// Four lanes at a time.
+struct SseSlabs {
+    o: [F4; 3],
+    inv: [F4; 3],
+    t_min: F4,
+    near: [usize; 3],
+    far: [usize; 3],
+}
+
+impl Slabs for SseSlabs {
+    #[inline(always)]
+    fn new(ray: &Ray) -> Self {
+        let inv = ray.d.recip().to_array();
+        let (near, far) = near_far(inv);
+        Self {
+            o: ray.o.to_array().map(F4::splat),
+            inv: inv.map(F4::splat),
+            t_min: F4::splat(ray.t_min),
+            near,
+            far,
+        }
+    }
+
+    #[inline(always)]
+    fn test(&self, node: &NodeW, t_max: f32) -> (u32, [f32; W]) {
+        let (near, far) = (&self.near, &self.far);
+        let mut t0 = [0.0f32; W];
+        let mut mask = 0;
+        for q in 0..W / 4 {
+            let slab = |row: usize, axis: usize| {
+                let lanes: &[f32; 4] = node.b[row][4 * q..4 * q + 4].try_into().unwrap();
+                (F4::load(lanes) - self.o[axis]) * self.inv[axis]
+            };
+            let tn = slab(near[2], 2).max(slab(near[1], 1).max(slab(near[0], 0).max(self.t_min)));
+            let tf = slab(far[2], 2)
+                .min(slab(far[1], 1).min(slab(far[0], 0).min(F4::splat(f32::INFINITY))));
+            let tf = (tf * F4::splat(FAR_SCALE)).min(F4::splat(t_max));
+            mask |= tn.le(tf).bits() << (4 * q);
+            t0[4 * q..4 * q + 4].copy_from_slice(&tn.to_array());
+        }
+        (mask, t0)
+    }
+}
+
+/// Eight lanes at once (only called from AVX code: `Bvh::walk_avx`).
+#[cfg(target_arch = "x86_64")]
+struct AvxSlabs {
+    o: [std::arch::x86_64::__m256; 3],
+    inv: [std::arch::x86_64::__m256; 3],
+    t_min: std::arch::x86_64::__m256,
+    near: [usize; 3],
+    far: [usize; 3],
+}
+
+#[cfg(target_arch = "x86_64")]
+impl Slabs for AvxSlabs {
+    #[inline(always)]
+    fn new(ray: &Ray) -> Self {
+        use std::arch::x86_64::*;
+        let inv = ray.d.recip().to_array();
+        let (near, far) = near_far(inv);
+        // SAFETY: only reached from `walk_avx`, which runs where the CPU has AVX.
+        unsafe {
+            Self {
+                o: ray.o.to_array().map(|x| _mm256_set1_ps(x)),
+                inv: inv.map(|x| _mm256_set1_ps(x)),
+                t_min: _mm256_set1_ps(ray.t_min),
+                near,
+                far,
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn test(&self, node: &NodeW, t_max: f32) -> (u32, [f32; W]) {
+        use std::arch::x86_64::*;
+        const { assert!(W == 8) };
+        let (near, far) = (&self.near, &self.far);
+        // SAFETY: only reached from `walk_avx`, which runs where the CPU has AVX; rows are W = 8
+        // floats.
+        unsafe {
+            macro_rules! slab {
+                ($row:expr, $axis:expr) => {
+                    _mm256_mul_ps(
+                        _mm256_sub_ps(_mm256_loadu_ps(node.b[$row].as_ptr()), self.o[$axis]),
+                        self.inv[$axis],
+                    )
+                };
+            }
+            let tn = _mm256_max_ps(slab!(near[0], 0), self.t_min);
+            let tn = _mm256_max_ps(slab!(near[1], 1), tn);
+            let tn = _mm256_max_ps(slab!(near[2], 2), tn);
+            let tf = _mm256_min_ps(slab!(far[0], 0), _mm256_set1_ps(f32::INFINITY));
+            let tf = _mm256_min_ps(slab!(far[1], 1), tf);
+            let tf = _mm256_min_ps(slab!(far[2], 2), tf);
+            let tf = _mm256_min_ps(
+                _mm256_mul_ps(tf, _mm256_set1_ps(FAR_SCALE)),
+                _mm256_set1_ps(t_max),
+            );
+            let mask = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(tn, tf)) as u32;
+            let mut t0 = [0.0f32; W];
+            _mm256_storeu_ps(t0.as_mut_ptr(), tn);
+            (mask, t0)
+        }
     }
 }
 
@@ -255,7 +462,7 @@ struct Source<'a> {
 
 /// The 4-wide tree being built, with its triangle packets.
 struct Collapsed {
-    nodes: Vec<Node4>,
+    nodes: Vec<NodeW>,
     packets: Vec<Tri4>,
     ids: Vec<TriId>,
 }
@@ -281,15 +488,51 @@ fn pack_leaf(src: &Source, leaf: &Node, out: &mut Collapsed) -> u32 {
     first
 }
 
-/// Turns the binary tree below `at` into 4-wide nodes appended to `out`; returns the new node's index.
-fn collapse(src: &Source, at: usize, out: &mut Collapsed) -> u32 {
+/// Trees over at least this many references have the subtrees of their root collapsed in parallel.
+const PARALLEL_COLLAPSE: usize = 1 << 14;
+
+impl Collapsed {
+    /// Empty, with room for the tree over `n` references.
+    fn with_capacity(n: usize) -> Self {
+        Self {
+            nodes: Vec::with_capacity(n / 4 + 1),
+            packets: Vec::with_capacity(n / 2 + 1),
+            ids: Vec::with_capacity(2 * n + 4),
+        }
+    }
+
+    /// Appends a separately collapsed subtree; returns the index of its root.
+    fn append(&mut self, sub: Collapsed) -> u32 {
+        let (node_base, packet_base) = (self.nodes.len() as u32, self.packets.len() as u32);
+        self.nodes.extend(sub.nodes.into_iter().map(|mut n| {
+            for lane in 0..W {
+                if n.count[lane] > 0 {
+                    n.child[lane] += packet_base;
+                } else if n.child[lane] != 0 {
+                    // (Child 0, the subtree's root, is nobody's child: 0 marks an unused lane.)
+                    n.child[lane] += node_base;
+                }
+            }
+            n
+        }));
+        self.packets.extend(sub.packets);
+        self.ids.extend(sub.ids);
+        node_base
+    }
+}
+
+/// Turns the binary tree below `at` (over `size` references) into `W`-wide nodes appended to `out`;
+/// returns the new node's index. With `parallel`, the subtrees of the new node are collapsed in
+/// parallel (each into its own arrays, then appended).
+fn collapse(src: &Source, at: usize, size: usize, parallel: bool, out: &mut Collapsed) -> u32 {
     let bin = src.bin;
-    // Open the largest inner child until there are four children (or only leaves left).
-    let mut kids: Vec<usize> = if bin[at].count > 0 {
-        vec![at]
-    } else {
-        let l = bin[at].index as usize;
-        vec![l, l + 1]
+    let inner = |i: usize| bin[i].count == 0;
+    // Children of binary inner node `i` over `n` references: the left one follows it, the right one
+    // is at `index`, and the left one's slots (twice its references) lie in between.
+    let children = |(i, n): (usize, usize)| {
+        let r = bin[i].index as usize;
+        let left = (r - i) / 2;
+        [(i + 1, left), (r, n - left)]
     };
     let area = |i: usize| {
         let n = &bin[i];
@@ -299,35 +542,67 @@ fn collapse(src: &Source, at: usize, out: &mut Collapsed) -> u32 {
         }
         .surface_area()
     };
-    while kids.len() < 4 {
-        let Some(pos) = (0..kids.len())
-            .filter(|&k| bin[kids[k]].count == 0)
-            .max_by(|&a, &b| area(kids[a]).total_cmp(&area(kids[b])))
+    // Open the largest inner child until there are W children (or only leaves left).
+    let mut kids = [(0usize, 0usize); W];
+    let mut n = if inner(at) {
+        kids[..2].copy_from_slice(&children((at, size)));
+        2
+    } else {
+        kids[0] = (at, size);
+        1
+    };
+    while n < W {
+        let Some(pos) = (0..n)
+            .filter(|&k| inner(kids[k].0))
+            .max_by(|&a, &b| area(kids[a].0).total_cmp(&area(kids[b].0)))
         else {
             break;
         };
-        let l = bin[kids[pos]].index as usize;
-        kids.swap_remove(pos);
-        kids.extend([l, l + 1]);
+        let [l, r] = children(kids[pos]);
+        kids[pos] = l;
+        kids[n] = r;
+        n += 1;
     }
     let index = out.nodes.len();
-    out.nodes.push(Node4 {
-        lo: [[f32::INFINITY; 4]; 3],
-        hi: [[f32::NEG_INFINITY; 4]; 3],
-        child: [0; 4],
-        count: [0; 4],
+    out.nodes.push(NodeW {
+        b: [
+            [f32::INFINITY; W],
+            [f32::INFINITY; W],
+            [f32::INFINITY; W],
+            [f32::NEG_INFINITY; W],
+            [f32::NEG_INFINITY; W],
+            [f32::NEG_INFINITY; W],
+        ],
+        child: [0; W],
+        count: [0; W],
     });
-    for (lane, &k) in kids.iter().enumerate() {
-        let n = bin[k];
-        let (child, count) = if n.count > 0 {
-            (pack_leaf(src, &n, out), n.count)
+    let kids = &kids[..n];
+    let mut subs: Vec<Option<Collapsed>> = if parallel {
+        kids.par_iter()
+            .map(|&(k, kn)| {
+                inner(k).then(|| {
+                    let mut sub = Collapsed::with_capacity(kn);
+                    collapse(src, k, kn, false, &mut sub);
+                    sub
+                })
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    for (lane, &(k, kn)) in kids.iter().enumerate() {
+        let c = bin[k];
+        let (child, count) = if c.count > 0 {
+            (pack_leaf(src, &c, out), c.count)
+        } else if let Some(sub) = subs.get_mut(lane).and_then(Option::take) {
+            (out.append(sub), 0)
         } else {
-            (collapse(src, k, out), 0)
+            (collapse(src, k, kn, false, out), 0)
         };
         let node = &mut out.nodes[index];
         for axis in 0..3 {
-            node.lo[axis][lane] = n.min[axis];
-            node.hi[axis][lane] = n.max[axis];
+            node.b[axis][lane] = c.min[axis];
+            node.b[3 + axis][lane] = c.max[axis];
         }
         node.child[lane] = child;
         node.count[lane] = count;
@@ -335,33 +610,100 @@ fn collapse(src: &Source, at: usize, out: &mut Collapsed) -> u32 {
     index as u32
 }
 
-/// Builds the binary tree over `refs` (reordering them in place into leaf order); leaves index into
-/// the whole reference array, whose slice this is from position `base` on.
-fn build_subtree(refs: &mut [PrimRef], base: u32) -> Vec<Node> {
-    let mut nodes = Vec::with_capacity(2 * refs.len() / MAX_LEAF.max(1) + 1);
-    nodes.push(Node {
-        min: [0.0; 3],
-        index: 0,
-        max: [0.0; 3],
-        count: 0,
-    });
-    build_into(refs, base, 0, &mut nodes);
-    nodes
+/// Build-time reference to one triangle: its bounds, with the triangle's index in the spare lane of
+/// `lo` (as bits xored with those of 1.0, so the lane holds a normal float and never slows the
+/// arithmetic on whole rows down; the lane is ignored).
+#[derive(Clone, Copy)]
+#[repr(C, align(16))]
+struct PrimRef {
+    lo: [f32; 4],
+    hi: [f32; 4],
 }
 
-fn set_bounds(node: &mut Node, b: Aabb) {
-    node.min = b.min.to_array();
-    node.max = b.max.to_array();
+const INDEX_BITS: u32 = 0x3F80_0000;
+
+impl PrimRef {
+    fn new(t: &[Vec3; 3], index: u32) -> Self {
+        let b = Aabb::from_points(*t);
+        let [x, y, z] = b.min.to_array();
+        let [u, v, w] = b.max.to_array();
+        Self {
+            lo: [x, y, z, f32::from_bits(index ^ INDEX_BITS)],
+            hi: [u, v, w, 0.0],
+        }
+    }
+
+    fn index(&self) -> u32 {
+        self.lo[3].to_bits() ^ INDEX_BITS
+    }
+
+    fn bounds(&self) -> Box3 {
+        Box3 {
+            lo: F4::load(&self.lo),
+            hi: F4::load(&self.hi),
+        }
+    }
+
+    /// Twice the centroid (lanes x, y, z).
+    fn c2(&self) -> F4 {
+        F4::load(&self.lo) + F4::load(&self.hi)
+    }
+}
+
+/// A box as two rows (lanes x, y, z; the fourth is ignored).
+#[derive(Clone, Copy)]
+struct Box3 {
+    lo: F4,
+    hi: F4,
+}
+
+impl Box3 {
+    fn empty() -> Self {
+        Self {
+            lo: F4::splat(f32::INFINITY),
+            hi: F4::splat(f32::NEG_INFINITY),
+        }
+    }
+
+    /// The union with `o`; a NaN lane of `o` leaves this box's lane as it was.
+    #[inline(always)]
+    fn union(self, o: Box3) -> Self {
+        Self {
+            lo: o.lo.min(self.lo),
+            hi: o.hi.max(self.hi),
+        }
+    }
+
+    #[inline(always)]
+    fn grow(self, p: F4) -> Self {
+        Self {
+            lo: p.min(self.lo),
+            hi: p.max(self.hi),
+        }
+    }
+
+    /// Half the surface area (of a non-empty box).
+    #[inline(always)]
+    fn half_area(&self) -> f32 {
+        let [x, y, z, _] = (self.hi - self.lo).to_array();
+        x * y + y * z + z * x
+    }
+
+    fn store(&self, node: &mut Node) {
+        let (lo, hi) = (self.lo.to_array(), self.hi.to_array());
+        node.min = [lo[0], lo[1], lo[2]];
+        node.max = [hi[0], hi[1], hi[2]];
+    }
 }
 
 /// Sets with more references than this are binned in parallel.
 const PARALLEL_BINNING: usize = 1 << 16;
 
-/// Bounds of the references and of their centroids.
-fn bounds_of(refs: &[PrimRef]) -> (Aabb, Aabb) {
-    let fold = |(b, c): (Aabb, Aabb), r: &PrimRef| (b.union(r.bounds), c.grow(r.centroid));
-    let merge = |(b0, c0): (Aabb, Aabb), (b1, c1): (Aabb, Aabb)| (b0.union(b1), c0.union(c1));
-    let empty = (Aabb::EMPTY, Aabb::EMPTY);
+/// Bounds of the references and of their doubled centroids.
+fn bounds_of(refs: &[PrimRef]) -> (Box3, Box3) {
+    let fold = |(b, c): (Box3, Box3), r: &PrimRef| (b.union(r.bounds()), c.grow(r.c2()));
+    let merge = |(b0, c0): (Box3, Box3), (b1, c1): (Box3, Box3)| (b0.union(b1), c0.union(c1));
+    let empty = (Box3::empty(), Box3::empty());
     if refs.len() > PARALLEL_BINNING {
         refs.par_chunks(8192)
             .map(|c| c.iter().fold(empty, fold))
@@ -371,76 +713,90 @@ fn bounds_of(refs: &[PrimRef]) -> (Aabb, Aabb) {
     }
 }
 
-/// Fills node `at` (already allocated) from `refs`, appending its descendants.
-fn build_into(refs: &mut [PrimRef], base: u32, at: usize, nodes: &mut Vec<Node>) {
-    let (bounds, centroids) = bounds_of(refs);
-    set_bounds(&mut nodes[at], bounds);
+/// Builds the binary tree over `refs` into `slots`, reordering `refs` into leaf order. The tree
+/// over `n` references takes at most `2n - 1` nodes, so each subtree gets that many slots (some
+/// stay unused): the node itself, its left subtree right after it, then its right subtree (whose
+/// index the node keeps). `slot0` is the global index of `slots[0]`, `base` that of `refs[0]`.
+fn build_node(
+    refs: &mut [PrimRef],
+    base: u32,
+    (bounds, centroids): (Box3, Box3),
+    slots: &mut [Node],
+    slot0: u32,
+) {
+    bounds.store(&mut slots[0]);
     let split = if refs.len() <= 1 {
         None
     } else {
-        find_split(refs, bounds, centroids)
+        find_split(refs, &bounds, &centroids)
     };
-    let mid = match split {
-        Some(s) => partition_in_place(refs, |r| s.bin_of(r.centroid) < s.bin),
+    let (mid, left, right) = match split {
+        Some(s) => partition(refs, &s),
         // No split beats a leaf, or the centroids coincide: still split large sets so leaves stay small.
         None if refs.len() > MAX_LEAF => {
-            let axis = centroids.extent().max_position();
+            let [x, y, z, _] = (centroids.hi - centroids.lo).to_array();
+            let axis = if x >= y && x >= z {
+                0
+            } else if y >= z {
+                1
+            } else {
+                2
+            };
             let mid = refs.len() / 2;
-            refs.select_nth_unstable_by(mid, |a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
-            mid
+            refs.select_nth_unstable_by(mid, |a, b| {
+                a.c2().to_array()[axis].total_cmp(&b.c2().to_array()[axis])
+            });
+            (mid, bounds_of(&refs[..mid]), bounds_of(&refs[mid..]))
         }
         None => {
-            nodes[at].index = base;
-            nodes[at].count = refs.len() as u32;
+            slots[0].index = base;
+            slots[0].count = refs.len() as u32;
             return;
         }
     };
-    let l = nodes.len();
-    nodes[at].index = l as u32;
-    nodes[at].count = 0;
-    let blank = nodes[at];
-    nodes.push(blank);
-    nodes.push(blank);
+    let (head, rest) = slots.split_at_mut(1);
+    let (left_slots, right_slots) = rest.split_at_mut(2 * mid - 1);
+    let right_slot = slot0 + 2 * mid as u32;
+    head[0].index = right_slot;
+    head[0].count = 0;
     let parallel = refs.len() >= PARALLEL_THRESHOLD;
-    let (left, right) = refs.split_at_mut(mid);
+    let (lrefs, rrefs) = refs.split_at_mut(mid);
     let right_base = base + mid as u32;
     if parallel {
-        let (lt, rt) = rayon::join(
-            || build_subtree(left, base),
-            || build_subtree(right, right_base),
+        rayon::join(
+            || build_node(lrefs, base, left, left_slots, slot0 + 1),
+            || build_node(rrefs, right_base, right, right_slots, right_slot),
         );
-        graft(lt, l, nodes);
-        graft(rt, l + 1, nodes);
     } else {
-        build_into(left, base, l, nodes);
-        build_into(right, right_base, l + 1, nodes);
+        build_node(lrefs, base, left, left_slots, slot0 + 1);
+        build_node(rrefs, right_base, right, right_slots, right_slot);
     }
 }
 
-/// Moves the references for which `left` holds to the front; returns how many there are.
-fn partition_in_place(refs: &mut [PrimRef], left: impl Fn(&PrimRef) -> bool) -> usize {
-    let mut i = 0;
-    for j in 0..refs.len() {
-        if left(&refs[j]) {
-            refs.swap(i, j);
+/// Moves the references left of the split to the front, gathering the bounds and doubled-centroid
+/// bounds of both sides on the way; returns how many go left, and the two sides' bounds.
+fn partition(refs: &mut [PrimRef], s: &Split) -> (usize, (Box3, Box3), (Box3, Box3)) {
+    let goes_left = |r: &PrimRef| s.bins_of(r.c2())[s.axis] < s.bin;
+    let (mut lb, mut lc, mut rb, mut rc) =
+        (Box3::empty(), Box3::empty(), Box3::empty(), Box3::empty());
+    let (mut i, mut j) = (0, refs.len());
+    loop {
+        while i < j && goes_left(&refs[i]) {
+            lb = lb.union(refs[i].bounds());
+            lc = lc.grow(refs[i].c2());
             i += 1;
         }
-    }
-    i
-}
-
-/// Copies a separately built subtree into `nodes`, its root into slot `at`, renumbering inner nodes
-/// (leaf indices are already global).
-fn graft(sub: Vec<Node>, at: usize, nodes: &mut Vec<Node>) {
-    let node_base = nodes.len() as u32 - 1; // subtree node k>0 lands at node_base + k
-    let fix = |mut n: Node| {
-        if n.count == 0 {
-            n.index += node_base;
+        while i < j && !goes_left(&refs[j - 1]) {
+            rb = rb.union(refs[j - 1].bounds());
+            rc = rc.grow(refs[j - 1].c2());
+            j -= 1;
         }
-        n
-    };
-    nodes[at] = fix(sub[0]);
-    nodes.extend(sub[1..].iter().map(|&n| fix(n)));
+        if i >= j {
+            break;
+        }
+        refs.swap(i, j - 1);
+    }
+    (i, (lb, lc), (rb, rc))
 }
 
 #[derive(Clone, Copy)]
@@ -450,46 +806,52 @@ struct Split {
     bin: usize,
     /// Bins in use (fewer for small sets, where evaluating 16 would cost more than it finds).
     bins: usize,
-    lo: f32,
-    scale: f32,
+    /// Per axis, the doubled-centroid bound and the scale that map onto bin numbers.
+    lo: F4,
+    scale: F4,
 }
 
 impl Split {
-    fn bin_of(&self, c: Vec3) -> usize {
-        (((c[self.axis] - self.lo) * self.scale) as usize).min(self.bins - 1)
+    /// Bin of a doubled centroid along each axis (the same arithmetic for binning and partitioning,
+    /// so both always agree).
+    #[inline(always)]
+    fn bins_of(&self, c2: F4) -> [usize; 4] {
+        // Clamped before the conversion (a NaN becomes 0: `max` keeps its second operand).
+        ((c2 - self.lo) * self.scale)
+            .max(F4::splat(0.0))
+            .min(F4::splat((self.bins - 1) as f32))
+            .to_i32()
+            .map(|b| b as usize)
     }
 }
 
 /// Per-axis bins of references: box and count.
 #[derive(Clone, Copy)]
 struct Bins {
-    boxes: [[Aabb; BINS]; 3],
-    counts: [[usize; BINS]; 3],
+    boxes: [[Box3; BINS]; 3],
+    counts: [[u32; BINS]; 3],
 }
 
 impl Bins {
-    const EMPTY: Bins = Bins {
-        boxes: [[Aabb::EMPTY; BINS]; 3],
-        counts: [[0; BINS]; 3],
-    };
-
-    /// Bins of a run of references (built in place: a `Bins` is too big to pass around per reference).
-    fn of(splits: &[Option<Split>; 3], refs: &[PrimRef]) -> Self {
-        let mut bins = Bins::EMPTY;
-        for r in refs {
-            bins.add(splits, r);
+    fn empty() -> Self {
+        Bins {
+            boxes: [[Box3::empty(); BINS]; 3],
+            counts: [[0; BINS]; 3],
         }
-        bins
     }
 
-    fn add(&mut self, splits: &[Option<Split>; 3], r: &PrimRef) {
-        for (axis, s) in splits.iter().enumerate() {
-            if let Some(s) = s {
-                let b = s.bin_of(r.centroid);
-                self.boxes[axis][b] = self.boxes[axis][b].union(r.bounds);
-                self.counts[axis][b] += 1;
+    /// Bins of a run of references.
+    fn of(s: &Split, refs: &[PrimRef]) -> Self {
+        let mut bins = Bins::empty();
+        for r in refs {
+            let b = s.bins_of(r.c2());
+            let bounds = r.bounds();
+            for (axis, &k) in b[..3].iter().enumerate() {
+                bins.boxes[axis][k] = bins.boxes[axis][k].union(bounds);
+                bins.counts[axis][k] += 1;
             }
         }
+        bins
     }
 
     fn merge(mut self, o: Bins) -> Self {
@@ -503,43 +865,56 @@ impl Bins {
     }
 }
 
+/// The SAH cost of intersecting `n` triangles: leaves are tested a packet of four at a time.
+fn packets(n: u32) -> f32 {
+    n.div_ceil(4) as f32
+}
+
 /// The binned-SAH split with the lowest cost, if it beats making a leaf.
-fn find_split(refs: &[PrimRef], bounds: Aabb, cb: Aabb) -> Option<Split> {
+fn find_split(refs: &[PrimRef], bounds: &Box3, cb: &Box3) -> Option<Split> {
     let nb = (refs.len() / 2).clamp(4, BINS);
-    let splits: [Option<Split>; 3] = std::array::from_fn(|axis| {
-        let extent = cb.max[axis] - cb.min[axis];
-        // Also skips a NaN extent.
-        (extent.partial_cmp(&0.0) == Some(std::cmp::Ordering::Greater)).then(|| Split {
-            axis,
-            bin: 0,
-            bins: nb,
-            lo: cb.min[axis],
-            scale: nb as f32 / extent,
-        })
+    let (lo, hi) = (cb.lo.to_array(), cb.hi.to_array());
+    // Axes along which the centroids do not spread (or NaN) get scale 0: one bin, no split.
+    let scale: [f32; 4] = std::array::from_fn(|axis| {
+        let extent = hi[axis] - lo[axis];
+        if axis < 3 && extent > 0.0 {
+            nb as f32 / extent
+        } else {
+            0.0
+        }
     });
+    let split0 = Split {
+        axis: 0,
+        bin: 0,
+        bins: nb,
+        lo: cb.lo,
+        scale: F4::load(&scale),
+    };
     let bins = if refs.len() > PARALLEL_BINNING {
         refs.par_chunks(8192)
-            .map(|c| Bins::of(&splits, c))
-            .reduce(|| Bins::EMPTY, Bins::merge)
+            .map(|c| Bins::of(&split0, c))
+            .reduce(Bins::empty, Bins::merge)
     } else {
-        Bins::of(&splits, refs)
+        Bins::of(&split0, refs)
     };
-    let leaf_cost = refs.len() as f32;
-    let parent_area = bounds.surface_area().max(f32::MIN_POSITIVE);
+    let leaf_cost = packets(refs.len() as u32);
+    let parent_area = bounds.half_area().max(f32::MIN_POSITIVE);
     let mut best: Option<(f32, Split)> = None;
-    for (axis, split0) in splits.iter().enumerate() {
-        let Some(split0) = split0 else { continue };
+    for (axis, &s) in scale[..3].iter().enumerate() {
+        if s == 0.0 {
+            continue;
+        }
         let (boxes, counts) = (&bins.boxes[axis], &bins.counts[axis]);
         let mut right_area = [0.0f32; BINS];
-        let mut right_count = [0usize; BINS];
-        let (mut acc, mut n) = (Aabb::EMPTY, 0);
+        let mut right_count = [0u32; BINS];
+        let (mut acc, mut n) = (Box3::empty(), 0);
         for b in (1..nb).rev() {
             acc = acc.union(boxes[b]);
             n += counts[b];
-            right_area[b] = acc.surface_area();
+            right_area[b] = acc.half_area();
             right_count[b] = n;
         }
-        let (mut acc, mut n) = (Aabb::EMPTY, 0);
+        let (mut acc, mut n) = (Box3::empty(), 0);
         for b in 1..nb {
             acc = acc.union(boxes[b - 1]);
             n += counts[b - 1];
@@ -547,10 +922,17 @@ fn find_split(refs: &[PrimRef], bounds: Aabb, cb: Aabb) -> Option<Split> {
                 continue;
             }
             let cost = TRAVERSAL_COST
-                + (acc.surface_area() * n as f32 + right_area[b] * right_count[b] as f32)
+                + (acc.half_area() * packets(n) + right_area[b] * packets(right_count[b]))
                     / parent_area;
             if best.is_none_or(|(c, _)| cost < c) {
-                best = Some((cost, Split { bin: b, ..*split0 }));
+                best = Some((
+                    cost,
+                    Split {
+                        axis,
+                        bin: b,
+                        ..split0
+                    },
+                ));
             }
         }
     }
@@ -603,7 +985,14 @@ mod tests {
                 ),
             ],
         );
-        let bvh = Bvh::build(s.clone());
+        // The walk this CPU takes, and (on x86_64) the portable SSE one too.
+        #[allow(unused_mut)]
+        let mut bvhs = vec![Bvh::build(s.clone())];
+        #[cfg(target_arch = "x86_64")]
+        bvhs.push(Bvh {
+            avx: false,
+            ..Bvh::build(s.clone())
+        });
         let mut rng = 0x1234_5678u64;
         let mut next = || {
             rng ^= rng << 13;
@@ -621,9 +1010,11 @@ mod tests {
             let d = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize();
             let ray = Ray::new(o, d);
             let want = brute(&s, &ray);
-            let got = bvh.intersect(&ray).map(|h| (h.t, h.inst, h.prim));
-            assert_eq!(got, want, "ray {ray:?}");
-            assert_eq!(bvh.occluded(&ray), want.is_some());
+            for bvh in &bvhs {
+                let got = bvh.intersect(&ray).map(|h| (h.t, h.inst, h.prim));
+                assert_eq!(got, want, "ray {ray:?}");
+                assert_eq!(bvh.occluded(&ray), want.is_some());
+            }
             hits += want.is_some() as u32;
         }
         assert!(hits > 2000, "test rays should hit often, hit {hits}");
@@ -652,16 +1043,24 @@ mod tests {
     fn axis_aligned_rays_inside_flat_boxes() {
         // Every node box of a planar grid is flat in z; rays parallel to it along x hit nothing,
         // and rays straight down the z axis through vertices always hit.
-        let bvh = Bvh::build(scene(
+        let s = scene(
             vec![generate::quad_grid(16)],
             vec![Instance::new(0, Mat4::IDENTITY)],
-        ));
-        for y in 0..=16 {
-            for x in 0..=16 {
-                let r = Ray::new(Vec3::new(x as f32, y as f32, 3.0), -Vec3::Z);
-                let h = bvh.intersect(&r).expect("a ray through a grid vertex hits");
-                assert!((h.t - 3.0).abs() < 1e-6);
-            }
+        );
+        #[allow(unused_mut)]
+        let mut bvhs = vec![Bvh::build(s.clone())];
+        #[cfg(target_arch = "x86_64")]
+        bvhs.push(Bvh {
+            avx: false,
+            ..Bvh::build(s)
+        });
+        for (bvh, y, x) in bvhs
+            .iter()
+            .flat_map(|b| (0..=16).flat_map(move |y| (0..=16).map(move |x| (b, y, x))))
+        {
+            let r = Ray::new(Vec3::new(x as f32, y as f32, 3.0), -Vec3::Z);
+            let h = bvh.intersect(&r).expect("a ray through a grid vertex hits");
+            assert!((h.t - 3.0).abs() < 1e-6);
         }
     }
 }

@@ -5,6 +5,7 @@ pub mod bvh;
 pub mod compare;
 #[cfg(feature = "embree")]
 pub mod embree;
+mod f4;
 pub mod flat;
 pub mod grid;
 pub mod list;

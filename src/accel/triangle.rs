@@ -4,6 +4,8 @@
 
 use glam::Vec3;
 
+use super::f4::F4;
+
 /// Per-ray constants of the watertight test: the axis permutation and shear that map the ray onto +Z.
 #[derive(Clone, Copy, Debug)]
 pub struct RayShear {
@@ -276,45 +278,81 @@ impl Tri4 {
     }
 }
 
-/// Hits of up to four triangles: per lane the distance (`f32::INFINITY` for a miss) and barycentrics.
+/// Hits of up to four triangles: a bit per lane that hit (`mask`), and per lane the distance and
+/// barycentrics (meaningful only where `mask` is set).
 #[derive(Clone, Copy, Debug)]
 pub struct Hits4 {
+    pub mask: u32,
     pub t: [f32; 4],
     pub u: [f32; 4],
     pub v: [f32; 4],
 }
 
-/// The watertight test of `intersect` on four triangles at once: the same code per lane (so both give
-/// bit-identical hits), with the edge functions of all lanes computed together so they vectorise.
+/// The watertight test of `intersect` on four triangles at once: the same operations per lane (so
+/// both give bit-identical hits), on four lanes at a time. A lane with an edge function of exactly
+/// zero (a ray through an edge or vertex) takes the scalar path, with its double-precision retry.
 #[inline(always)]
 pub fn intersect4(o: Vec3, sh: &RayShear, tri: &Tri4, t_min: f32, t_max: f32) -> Hits4 {
     let o = o.to_array();
     let (kx, ky, kz) = (sh.kx, sh.ky, sh.kz);
-    // Whole rows of four lanes at a time, so the loads and subtractions vectorise.
-    let rel = |vertex: usize, axis: usize| -> [f32; 4] {
-        let c = &tri.p[vertex][axis];
-        [
-            c[0] - o[axis],
-            c[1] - o[axis],
-            c[2] - o[axis],
-            c[3] - o[axis],
-        ]
-    };
-    let a = [rel(0, kx), rel(0, ky), rel(0, kz)];
-    let b = [rel(1, kx), rel(1, ky), rel(1, kz)];
-    let c = [rel(2, kx), rel(2, ky), rel(2, kz)];
-    let at = |v: &[[f32; 4]; 3], l: usize| [v[0][l], v[1][l], v[2][l]];
-    let sheared: [Sheared; 4] =
-        std::array::from_fn(|l| Sheared::new(sh, at(&a, l), at(&b, l), at(&c, l)));
-    let edges: [[f32; 3]; 4] = std::array::from_fn(|l| sheared[l].edges());
-    let t_scaled: [f32; 4] = std::array::from_fn(|l| sheared[l].t_scaled(sh, edges[l]));
+    let rel = |vertex: usize, axis: usize| F4::load(&tri.p[vertex][axis]) - F4::splat(o[axis]);
+    let (sx, sy, sz) = (F4::splat(sh.sx), F4::splat(sh.sy), F4::splat(sh.sz));
+    let (az, bz, cz) = (rel(0, kz), rel(1, kz), rel(2, kz));
+    let ax = rel(0, kx) - sx * az;
+    let ay = rel(0, ky) - sy * az;
+    let bx = rel(1, kx) - sx * bz;
+    let by = rel(1, ky) - sy * bz;
+    let cx = rel(2, kx) - sx * cz;
+    let cy = rel(2, ky) - sy * cz;
+    let u = cx * by - cy * bx;
+    let v = ax * cy - ay * cx;
+    let w = bx * ay - by * ax;
+    let zero = F4::splat(0.0);
+    if u.eq(zero).or(v.eq(zero)).or(w.eq(zero)).bits() != 0 {
+        return intersect4_lanes(o, sh, tri, t_min, t_max);
+    }
+    let t_scaled = u * (sz * az) + v * (sz * bz) + w * (sz * cz);
+    let neg = u.lt(zero).or(v.lt(zero)).or(w.lt(zero));
+    let pos = u.gt(zero).or(v.gt(zero)).or(w.gt(zero));
+    let det = u + v + w;
+    let inv = F4::splat(1.0) / det;
+    let t = t_scaled * inv;
+    let ok = t
+        .gt(F4::splat(t_min))
+        .and(t.lt(F4::splat(t_max)))
+        .and_not(neg.and(pos))
+        .and_not(det.eq(zero));
+    Hits4 {
+        mask: ok.bits(),
+        t: t.to_array(),
+        u: (v * inv).to_array(),
+        v: (w * inv).to_array(),
+    }
+}
+
+/// `intersect4` lane by lane, for packets where some edge function is exactly zero.
+#[cold]
+#[inline(never)]
+fn intersect4_lanes(o: [f32; 3], sh: &RayShear, tri: &Tri4, t_min: f32, t_max: f32) -> Hits4 {
     let mut out = Hits4 {
+        mask: 0,
         t: [f32::INFINITY; 4],
         u: [0.0; 4],
         v: [0.0; 4],
     };
+    let k = |vertex: usize, l: usize| {
+        let p = &tri.p[vertex];
+        [
+            p[sh.kx][l] - o[sh.kx],
+            p[sh.ky][l] - o[sh.ky],
+            p[sh.kz][l] - o[sh.kz],
+        ]
+    };
     for l in 0..4 {
-        if let Some(h) = sheared[l].finish(sh, edges[l], t_scaled[l], t_min, t_max) {
+        let s = Sheared::new(sh, k(0, l), k(1, l), k(2, l));
+        let e = s.edges();
+        if let Some(h) = s.finish(sh, e, s.t_scaled(sh, e), t_min, t_max) {
+            out.mask |= 1 << l;
             out.t[l] = h.t;
             out.u[l] = h.u;
             out.v[l] = h.v;
