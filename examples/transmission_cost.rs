@@ -19,8 +19,7 @@ fn main() -> anyhow::Result<()> {
     let num = |i: usize, d: usize| args.get(i).and_then(|a| a.parse().ok()).unwrap_or(d);
     let (spp, width, height, repeats) = (num(1, 32) as u32, num(2, 320), num(3, 240), num(4, 2));
     let mut scene = Scene::load(&path)?;
-    let camera = defaults::default_camera(&scene, width as f32 / height as f32);
-    defaults::light_if_unlit(&mut scene, &camera.to_world);
+    let camera = defaults::default_view(&mut scene, width as f32 / height as f32);
     let transmissive = scene
         .materials
         .iter()

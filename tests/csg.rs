@@ -13,13 +13,6 @@ use glint::render::RenderSettings;
 use glint::scene::{defaults, generate, Camera, Scene};
 use glint::Ray;
 
-fn backends() -> Vec<Backend> {
-    Backend::all_available()
-        .into_iter()
-        .filter(|&b| b != Backend::Obvhs)
-        .collect()
-}
-
 /// Random rays towards the CSG objects' boxes and the scene at large.
 fn rays_at_csg(scene: &Scene, n: usize) -> Vec<Ray> {
     let b = scene.bounds();
@@ -57,7 +50,10 @@ fn backends_agree_on_csg_and_meshes() {
         .filter(|r| reference.intersect(r).is_some_and(|h| h.csg().is_some()))
         .count();
     assert!(csg_hits > rays.len() / 3, "{csg_hits} CSG hits");
-    for b in backends().into_iter().filter(|&b| b != Backend::Bvh) {
+    for b in common::render_backends()
+        .into_iter()
+        .filter(|&b| b != Backend::Bvh)
+    {
         let other = accel::build(scene.clone(), b).unwrap();
         let g = compare::compare(&scene, reference.as_ref(), other.as_ref(), &rays);
         eprintln!(
@@ -99,7 +95,7 @@ fn csg_sphere_renders_like_a_tessellated_one() {
         Vec3::Y,
         0.6,
     );
-    for backend in backends() {
+    for backend in common::render_backends() {
         let a = render(sphere_scene(false), &camera, backend);
         let b = render(sphere_scene(true), &camera, backend);
         let n = a.pixels.len() as f32;
@@ -162,7 +158,7 @@ fn sphere_minus_a_bigger_sphere_renders_nothing() {
         .unwrap(),
     );
     let camera = Camera::look_at(Vec3::new(0.5, 0.8, 3.0), Vec3::ZERO, Vec3::Y, 0.9);
-    for backend in backends() {
+    for backend in common::render_backends() {
         let image = render(scene.clone(), &camera, backend);
         let covered: f32 = image.pixels.iter().map(|p| p.w).sum();
         assert_eq!(covered, 0.0, "{backend}");
@@ -194,7 +190,7 @@ fn lens_depth_through_every_backend() {
     );
     let scene = Arc::new(scene);
     let rim = (r * r - c * c).sqrt();
-    for backend in backends() {
+    for backend in common::render_backends() {
         let a = accel::build(scene.clone(), backend).unwrap();
         let mut worst = 0.0f32;
         for i in 0..25 {
@@ -229,7 +225,7 @@ fn secondary_rays_leave_csg_surfaces_cleanly() {
     let scene = Arc::new(generate::csg_showcase());
     let size = scene.bounds().extent().length();
     let rays = rays_at_csg(&scene, 20_000);
-    for backend in backends() {
+    for backend in common::render_backends() {
         let a = accel::build(scene.clone(), backend).unwrap();
         let (mut leaving, mut near) = (0, 0);
         for ray in &rays {
@@ -303,7 +299,7 @@ fn a_moving_csg_object_streaks_by_its_displacement() {
     let streak = (shift / depth * ppt) as f64;
     let square = (side / depth * ppt) as f64;
     let base = (square * square + 1.0) / 12.0;
-    for backend in backends() {
+    for backend in common::render_backends() {
         let img = common::render_with(&scene, &camera, backend, &settings);
         let (mx, my, vx, vy) = common::moments(&img);
         // A box of length `streak` convolved with the square and the pixel.

@@ -228,8 +228,7 @@ fn backends_agree_on_a_moving_scene() {
         max_depth: 2,
         ..Default::default()
     };
-    let cam = glint::scene::defaults::default_camera(&scene, 1.0);
-    glint::scene::defaults::light_if_unlit(&mut scene, &cam.to_world);
+    let cam = glint::scene::defaults::default_view(&mut scene, 1.0);
     let scene = Arc::new(scene);
     let reference = common::render_with(&scene, &cam, Backend::Bvh, &settings);
     for backend in Backend::all_available() {
@@ -375,29 +374,15 @@ fn scene_files_render_alike_in_every_backend() {
             seed: 5,
             ..Default::default()
         };
-        let images: Vec<Image> = Backend::all_available()
+        let images: Vec<Image> = common::render_backends()
             .into_iter()
-            .filter(|&b| b != Backend::Obvhs)
             .map(|b| common::render_with(&scene, &camera, b, &s))
             .collect();
-        let mean = |img: &Image| {
-            img.pixels
-                .iter()
-                .map(|p| p.truncate().element_sum() as f64)
-                .sum::<f64>()
-                / img.pixels.len() as f64
-        };
-        let m0 = mean(&images[0]);
+        let m0 = images[0].mean_rgb();
         assert!(m0 > 0.0, "{}: black", path.display());
         for img in &images {
             assert!(!img.has_non_finite(), "{}", path.display());
-            let mad = img
-                .pixels
-                .iter()
-                .zip(&images[0].pixels)
-                .map(|(a, b)| (*a - *b).truncate().abs().element_sum() as f64)
-                .sum::<f64>()
-                / img.pixels.len() as f64;
+            let mad = img.mean_abs_diff(&images[0]);
             assert!(mad < 0.01 * m0, "{}: {mad} vs mean {m0}", path.display());
         }
     }

@@ -161,65 +161,40 @@ fn adaptive_spends_fewer_samples_on_a_plain_background() {
     );
 }
 
+/// `glint render` of the demo to `out` with `args`; panics with its stderr if it fails.
+fn glint_render_demo(out: &Path, args: &[&str]) {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_glint"))
+        .args(["render", demo().to_str().unwrap(), "-o"])
+        .arg(out)
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
 #[test]
 fn cli_writes_the_spp_map_and_honours_a_time_budget() {
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("a.exr");
     let map = dir.path().join("spp.exr");
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_glint"))
-        .args(["render", demo().to_str().unwrap(), "-o"])
-        .arg(&out)
-        .args([
-            "--width",
-            "32",
-            "--height",
-            "24",
-            "--adaptive",
-            "--min-spp",
-            "4",
-        ])
-        .args([
-            "--max-spp",
-            "32",
-            "--target-error",
-            "0.05",
-            "--sampler",
-            "stratified",
-        ])
-        .args(["--filter", "tent", "--spp-map"])
-        .arg(&map)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let adaptive: Vec<&str> = "--width 32 --height 24 --adaptive --min-spp 4 --max-spp 32 \
+                               --target-error 0.05 --sampler stratified --filter tent"
+        .split_whitespace()
+        .collect();
+    let mut args = adaptive.clone();
+    args.extend(["--spp-map", map.to_str().unwrap()]);
+    glint_render_demo(&dir.path().join("a.exr"), &args);
     let spp = glint::film::read_exr(&map).unwrap();
     assert!(spp.pixels.iter().all(|p| p.x >= 4.0 && p.x <= 32.0));
     // `--aov spp` puts the same map beside the output.
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_glint"))
-        .args(["render", demo().to_str().unwrap(), "-o"])
-        .arg(dir.path().join("b.exr"))
-        .args([
-            "--width",
-            "32",
-            "--height",
-            "24",
-            "--adaptive",
-            "--min-spp",
-            "4",
-        ])
-        .args(["--max-spp", "32", "--target-error", "0.05", "--aov", "spp"])
-        .args(["--sampler", "stratified", "--filter", "tent"])
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let mut args = adaptive.clone();
+    args.extend(["--aov", "spp"]);
+    glint_render_demo(&dir.path().join("b.exr"), &args);
     let beside = glint::film::read_exr(&dir.path().join("b.spp.exr")).unwrap();
     assert_eq!(beside.pixels, spp.pixels);
     let png = dir.path().join("t.png");
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_glint"))
-        .args(["render", demo().to_str().unwrap(), "-o"])
-        .arg(&png)
-        .args(["--width", "16", "--height", "12", "--time", "300ms"])
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    glint_render_demo(
+        &png,
+        &["--width", "16", "--height", "12", "--time", "300ms"],
+    );
     assert!(png.is_file());
 }

@@ -460,7 +460,7 @@ struct Source<'a> {
     ids: &'a [TriId],
 }
 
-/// The 4-wide tree being built, with its triangle packets.
+/// The `W`-wide tree being built, with its triangle packets.
 struct Collapsed {
     nodes: Vec<NodeW>,
     packets: Vec<Tri4>,

@@ -128,8 +128,7 @@ pub struct Report {
 /// default light rig when it has no lights.
 fn load(path: &Path, width: usize, height: usize) -> Result<(Arc<Scene>, Camera)> {
     let mut scene = Scene::load(path)?;
-    let camera = defaults::default_camera(&scene, width as f32 / height as f32);
-    defaults::light_if_unlit(&mut scene, &camera.to_world);
+    let camera = defaults::default_view(&mut scene, width as f32 / height as f32);
     Ok((Arc::new(scene), camera))
 }
 

@@ -10,6 +10,7 @@ use indicatif::ProgressBar;
 
 use super::rays::load_input;
 use crate::accel::{self, Backend};
+use crate::film::Image;
 use crate::render::{self, RenderSettings};
 use crate::scene::features::Features;
 use crate::scene::{defaults, Camera, Lens, Material, Motion, Scene};
@@ -164,63 +165,51 @@ pub fn run(
 ) -> Result<(Features, Vec<Row>)> {
     let mut base = load_input(input)?;
     let aspect = settings.width as f32 / settings.height as f32;
-    let camera = defaults::default_camera(&base, aspect);
-    defaults::light_if_unlit(&mut base, &camera.to_world);
+    let camera = defaults::default_view(&mut base, aspect);
     let features = Features::of(&base, &camera);
-    let mut rows = Vec::new();
-    let mut reference: Option<Vec<glam::Vec4>> = None;
     let derived = Variant {
         name: "as derived",
         applies: |_| true,
         change: |_, _| {},
     };
-    for v in std::iter::once(&derived).chain(VARIANTS.iter()) {
-        if !(v.applies)(&features) {
-            continue;
-        }
-        let mut scene: Scene = base.clone();
-        let mut cam = camera.clone();
-        (v.change)(&mut scene, &mut cam);
-        let variant = v.name;
-        let scene = Arc::new(scene);
-        let (mut build_seconds, mut render_seconds) = (f64::INFINITY, f64::INFINITY);
-        let mut image = None;
-        for _ in 0..repeat.max(1) {
+    let variants: Vec<(&Variant, Arc<Scene>, Camera)> = std::iter::once(&derived)
+        .chain(VARIANTS.iter())
+        .filter(|v| (v.applies)(&features))
+        .map(|v| {
+            let (mut scene, mut cam) = (base.clone(), camera.clone());
+            (v.change)(&mut scene, &mut cam);
+            (v, Arc::new(scene), cam)
+        })
+        .collect();
+    // Repeats go round the variants, so a slow spell of the machine falls on all of them alike.
+    let mut best = vec![(f64::INFINITY, f64::INFINITY); variants.len()];
+    let mut images: Vec<Option<Image>> = vec![None; variants.len()];
+    for _ in 0..repeat.max(1) {
+        for (k, (_, scene, cam)) in variants.iter().enumerate() {
             let t = Instant::now();
             let accel = accel::build(scene.clone(), backend)?;
-            build_seconds = build_seconds.min(t.elapsed().as_secs_f64());
-            let out = render::render_full(
-                &scene,
-                accel.as_ref(),
-                &cam,
-                settings,
-                &ProgressBar::hidden(),
-            );
-            render_seconds = render_seconds.min(out.stats.seconds);
-            image = Some(out.image.pixels);
+            let build = t.elapsed().as_secs_f64();
+            let out =
+                render::render_full(scene, accel.as_ref(), cam, settings, &ProgressBar::hidden());
+            best[k] = (best[k].0.min(build), best[k].1.min(out.stats.seconds));
+            images[k] = Some(out.image);
         }
-        let image = image.expect("rendered at least once");
-        let image_difference = match &reference {
-            None => 0.0,
-            Some(r) => {
-                let (mut d, mut m) = (0.0f64, 0.0f64);
-                for (a, b) in image.iter().zip(r) {
-                    d += (*a - *b).truncate().abs().element_sum() as f64;
-                    m += b.truncate().abs().element_sum() as f64;
-                }
-                d / m.max(1e-12)
-            }
-        };
-        if reference.is_none() {
-            reference = Some(image);
-        }
-        rows.push(Row {
-            variant,
-            build_seconds,
-            render_seconds,
-            image_difference,
-        });
     }
+    let images: Vec<Image> = images.into_iter().flatten().collect();
+    let reference = &images[0];
+    let rows = variants
+        .iter()
+        .zip(&best)
+        .zip(&images)
+        .map(
+            |(((v, _, _), &(build_seconds, render_seconds)), image)| Row {
+                variant: v.name,
+                build_seconds,
+                render_seconds,
+                image_difference: image.mean_abs_diff(reference) / reference.mean_rgb().max(1e-12),
+            },
+        )
+        .collect();
     Ok((features, rows))
 }
 

@@ -342,8 +342,9 @@ fn parse_shutter(s: &str) -> Result<[f32; 2], String> {
 }
 
 impl LensArgs {
-    /// The thin lens these flags ask for on `camera` (None for a pinhole). `--focus-on` traces a ray
-    /// through the pixel; the default focus is the model's centre.
+    /// The thin lens these flags ask for on `camera` (None for a pinhole); without a lens flag, the
+    /// camera's own (a scene file's). `--focus-on` traces a ray through the pixel; the default focus
+    /// is the model's centre.
     pub fn lens(
         &self,
         scene: &Scene,
@@ -366,7 +367,7 @@ impl LensArgs {
                 if self.focus_distance.is_some() || self.focus_on.is_some() {
                     bail!("--focus-distance and --focus-on need --aperture or --fstop");
                 }
-                return Ok(None);
+                return Ok(camera.lens);
             }
         };
         if radius == 0.0 {
@@ -653,20 +654,12 @@ fn render_command(mut args: RenderArgs) -> Result<()> {
     let t1 = Instant::now();
     let accel = accel::build(scene.clone(), args.image.backend)?;
     let build_s = t1.elapsed().as_secs_f64();
-    // Lens flags replace the camera's own lens (a scene file's); without them it stays.
-    let l = &args.lens;
-    if l.aperture.is_some()
-        || l.fstop.is_some()
-        || l.focus_distance.is_some()
-        || l.focus_on.is_some()
-    {
-        camera.lens = l.lens(
-            &scene,
-            accel.as_ref(),
-            &camera,
-            (args.image.width, args.image.height),
-        )?;
-    }
+    camera.lens = args.lens.lens(
+        &scene,
+        accel.as_ref(),
+        &camera,
+        (args.image.width, args.image.height),
+    )?;
 
     let progress = progress_bar(
         args.quiet,

@@ -389,6 +389,8 @@ pub struct CsgObject {
 #[derive(Clone, Debug)]
 struct ObjectMotion {
     placement: Motion,
+    /// `to_world^-1`: with the placement at `t`, where the rest pose goes at `t`.
+    from_rest: Mat4,
     /// Bounds over the whole shutter, and at each time step (for Embree's motion blur).
     bounds: Aabb,
     step_bounds: Vec<Aabb>,
@@ -615,6 +617,7 @@ impl CsgObject {
         let bounds = step_bounds.iter().fold(Aabb::EMPTY, |b, s| b.union(*s));
         self.motion = Some(Box::new(ObjectMotion {
             placement,
+            from_rest,
             bounds,
             step_bounds,
         }));
@@ -653,15 +656,15 @@ impl CsgObject {
         self.nodes.last().map_or(Aabb::EMPTY, |n| n.bounds)
     }
 
-    /// From the world at normalised shutter time `time` to where the object rests (None: still).
-    fn to_rest(&self, time: f32) -> Option<Mat4> {
+    /// From where the object rests to where it is at normalised shutter time `time` (None: still).
+    fn rest_to_world(&self, time: f32) -> Option<Mat4> {
         let m = self.motion.as_ref()?;
-        Some(self.to_world * m.placement.at(time).inverse())
+        Some(m.placement.at(time) * m.from_rest)
     }
 
     /// The ray carried to where the object rests (the same ray for a still object).
     fn rest_ray(&self, ray: &Ray) -> Ray {
-        match self.to_rest(ray.time) {
+        match self.rest_to_world(ray.time).map(|m| m.inverse()) {
             None => *ray,
             Some(m) => Ray {
                 o: m.transform_point3(ray.o),
@@ -876,13 +879,14 @@ impl CsgObject {
 
     /// The surface `id` at world point `p`, where the object is at normalised shutter time `time`.
     pub fn surface(&self, id: u32, p: Vec3, time: f32) -> CsgSurface {
-        let Some(to_rest) = self.to_rest(time) else {
+        let Some(from_rest) = self.rest_to_world(time) else {
             return self.rest_surface(id, p);
         };
+        let to_rest = from_rest.inverse();
         let s = self.rest_surface(id, to_rest.transform_point3(p));
-        // Back from rest: points by the inverse, normals by the inverse's inverse transpose.
+        // Back from rest: points by `from_rest`, normals by its inverse transpose.
         CsgSurface {
-            p: to_rest.inverse().transform_point3(s.p),
+            p: from_rest.transform_point3(s.p),
             n: Mat3::from_mat4(to_rest)
                 .transpose()
                 .mul_vec3(s.n)

@@ -452,16 +452,13 @@ pub fn render_full(
             break;
         }
         // Plan the next round.
-        let mut counts = vec![0u32; w * h];
-        for t in &tiles {
-            let tw = t.x1 - t.x0;
-            for (k, a) in t.px.iter().enumerate() {
-                counts[(t.y0 + k / tw) * w + t.x0 + k % tw] = a.n;
-            }
-        }
+        let counts = per_pixel(&tiles, w, h, |a| a.n);
         let mut next: Vec<u32> = match adaptive {
             AdaptiveMode::Variance => {
-                let cost = ray_cost_map(&tiles, w, h);
+                // Rays per sample so far (at least 1): the cost of one more sample there.
+                let cost = per_pixel(&tiles, w, h, |a| {
+                    (a.rays as f64 / a.n.max(1) as f64).max(1.0)
+                });
                 plan_variance_round(&counts, &error_map(&tiles, w, h), &cost, settings)
             }
             _ => match settings.time_budget {
@@ -491,16 +488,12 @@ pub fn render_full(
         target = next;
     }
     progress.finish_and_clear();
-    let mut image = Image::new(w, h);
-    let mut spp = vec![0u32; w * h];
-    for t in &tiles {
-        let tw = t.x1 - t.x0;
-        for (k, a) in t.px.iter().enumerate() {
-            let i = (t.y0 + k / tw) * w + t.x0 + k % tw;
-            image.pixels[i] = a.value().as_vec4();
-            spp[i] = a.n;
-        }
-    }
+    let image = Image {
+        width: w,
+        height: h,
+        pixels: per_pixel(&tiles, w, h, |a| a.value().as_vec4()),
+    };
+    let spp = per_pixel(&tiles, w, h, |a| a.n);
     let stats = RenderStats {
         rays: rays.into_inner(),
         seconds: start.elapsed().as_secs_f64(),
@@ -515,13 +508,7 @@ pub fn render_full(
 /// Per-pixel squared relative error estimate, averaged over the pixel's 3x3 neighbourhood (so a
 /// pixel whose two half buffers agree by chance does not stop alone).
 fn error_map(tiles: &[Tile], w: usize, h: usize) -> Vec<f64> {
-    let mut e = vec![0.0f64; w * h];
-    for t in tiles {
-        let tw = t.x1 - t.x0;
-        for (k, a) in t.px.iter().enumerate() {
-            e[(t.y0 + k / tw) * w + t.x0 + k % tw] = a.rel_err2() / 3.0;
-        }
-    }
+    let e = per_pixel(tiles, w, h, |a| a.rel_err2() / 3.0);
     (0..w * h)
         .into_par_iter()
         .map(|i| {
@@ -541,16 +528,21 @@ fn error_map(tiles: &[Tile], w: usize, h: usize) -> Vec<f64> {
         .collect()
 }
 
-/// Rays per sample of each pixel so far (at least 1): the cost of one more sample there.
-fn ray_cost_map(tiles: &[Tile], w: usize, h: usize) -> Vec<f64> {
-    let mut c = vec![1.0f64; w * h];
+/// One value per pixel of the image (row-major), read from the tiles' accumulators.
+fn per_pixel<T: Copy + Default>(
+    tiles: &[Tile],
+    w: usize,
+    h: usize,
+    f: impl Fn(&Acc) -> T,
+) -> Vec<T> {
+    let mut out = vec![T::default(); w * h];
     for t in tiles {
         let tw = t.x1 - t.x0;
         for (k, a) in t.px.iter().enumerate() {
-            c[(t.y0 + k / tw) * w + t.x0 + k % tw] = (a.rays as f64 / a.n.max(1) as f64).max(1.0);
+            out[(t.y0 + k / tw) * w + t.x0 + k % tw] = f(a);
         }
     }
-    c
+    out
 }
 
 /// The variance-adaptive plan for the next round: the samples each pixel should have, given the

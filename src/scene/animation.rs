@@ -356,6 +356,13 @@ impl Motion {
             .fold(Aabb::EMPTY, |b, m| b.union(object.transformed(m)))
     }
 
+    /// The motion of `object` (local bounds) placed by `f` (normalised time -> transform), sampled
+    /// within `MOTION_TOLERANCE` of the object's size. None when nothing moves.
+    pub fn of_object(f: impl Fn(f32) -> Mat4, object: &Aabb) -> Option<Motion> {
+        let tol = MOTION_TOLERANCE * object.extent().length().max(1e-6);
+        Self::sample(f, object, tol)
+    }
+
     /// Samples `f` (normalised time -> transform) at as few evenly spaced steps as keep the linear
     /// interpolation within `tolerance` of the truth for the corners of `object`, checked halfway
     /// between steps (2, 3, 5, 9, ... steps). None when nothing moves.
@@ -432,14 +439,13 @@ pub fn pose(scene: &mut Scene, frame_time: f32, shutter: [f32; 2]) {
             continue;
         };
         let object = scene.meshes[inst.mesh as usize].bounds();
-        let tol = MOTION_TOLERANCE * object.extent().length().max(1e-6);
         let world = |u: f32| anim.world(node, t_of(u));
         let to_world = world(0.0);
         if to_world.is_finite() && to_world.determinant() != 0.0 {
             *inst = super::Instance::new(inst.mesh, to_world);
         }
         if open {
-            inst.motion = Motion::sample(world, &object, tol).filter(|m| {
+            inst.motion = Motion::of_object(world, &object).filter(|m| {
                 m.steps
                     .iter()
                     .all(|s| s.is_finite() && s.determinant() != 0.0)

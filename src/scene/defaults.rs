@@ -51,6 +51,14 @@ pub fn default_camera(scene: &Scene, aspect: f32) -> Camera {
     })
 }
 
+/// The view glint renders a scene from when told nothing: `default_camera`, with the light rig
+/// placed from it added when the scene has no light of its own (`light_if_unlit`).
+pub fn default_view(scene: &mut Scene, aspect: f32) -> Camera {
+    let camera = default_camera(scene, aspect);
+    light_if_unlit(scene, &camera.to_world);
+    camera
+}
+
 /// Adds the light rig (placed relative to the camera) when the scene has no light of its own.
 pub fn light_if_unlit(scene: &mut Scene, camera_to_world: &Mat4) {
     if !has_own_lights(scene) {

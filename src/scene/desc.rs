@@ -585,8 +585,7 @@ fn add_objects(
             // as keep the linear interpolation within the motion tolerance.
             let end = end.to_mat4();
             let local = object.bounds().transformed(&start.inverse());
-            let tol = super::animation::MOTION_TOLERANCE * local.extent().length().max(1e-6);
-            if let Some(m) = super::Motion::sample(|u| blend(start, end, u), &local, tol) {
+            if let Some(m) = super::Motion::of_object(|u| blend(start, end, u), &local) {
                 object = object.with_motion(m);
             }
         }

@@ -632,8 +632,7 @@ impl Scene {
             let mut inst = Instance::new(i.mesh + mesh0, placement(0.0) * i.to_world_at(0.0));
             if placement_moves || i.motion.is_some() {
                 let object = other.meshes[i.mesh as usize].bounds();
-                let tol = animation::MOTION_TOLERANCE * object.extent().length().max(1e-6);
-                inst.motion = Motion::sample(|u| placement(u) * i.to_world_at(u), &object, tol);
+                inst.motion = Motion::of_object(|u| placement(u) * i.to_world_at(u), &object);
             }
             self.instances.push(inst);
         }

@@ -54,9 +54,16 @@ pub fn all_model_files() -> Vec<PathBuf> {
 /// light rig when it has no lights of its own.
 pub fn load_for_render(path: &Path, width: usize, height: usize) -> (Arc<Scene>, Camera) {
     let mut scene = Scene::load(path).unwrap_or_else(|e| panic!("{e}"));
-    let camera = defaults::default_camera(&scene, width as f32 / height as f32);
-    defaults::light_if_unlit(&mut scene, &camera.to_world);
+    let camera = defaults::default_view(&mut scene, width as f32 / height as f32);
     (Arc::new(scene), camera)
+}
+
+/// The backends that trace whole scenes (obvhs, a bench peer, traces triangles only).
+pub fn render_backends() -> Vec<Backend> {
+    Backend::all_available()
+        .into_iter()
+        .filter(|&b| b != Backend::Obvhs)
+        .collect()
 }
 
 pub fn render_with(
