@@ -1,9 +1,11 @@
 //! A uniform voxel grid over world-space triangles (`--backend grid`): instances flattened as the BVH
 //! flattens them, cells sized from the triangle count (about `lambda` triangles' worth of cells per
-//! triangle, shaped by the bounds' aspect), stored compactly (per-cell offsets into one flat list of
-//! triangle indices) and built in parallel. Rays walk the cells with the 3D-DDA of Amanatides and Woo,
-//! test each triangle once (a small per-ray mailbox) with the watertight test the BVH uses, and stop as
-//! soon as the closest hit lies in the cell being walked, so both backends return the same hits.
+//! triangle, shaped by the bounds' aspect), stored compactly (per-cell offsets into one flat array of
+//! four-triangle packets, as the BVH's leaves) and built in parallel. Rays walk the cells with the
+//! 3D-DDA of Amanatides and Woo, test each cell's packets with the four-wide watertight test the BVH
+//! uses (lanes already tested by the ray are masked out by a small per-ray mailbox, and a packet with
+//! no lane left is skipped), and stop as soon as the closest hit lies in the cell being walked, so
+//! both backends return the same hits.
 //!
 //! Robustness: cell crossings are computed directly from the cell boundaries (never accumulated), the
 //! start cell is chosen consistently with those crossings, and every triangle is inserted into the
@@ -19,7 +21,7 @@ use rayon::prelude::*;
 use super::flat::{flatten, TriId};
 use super::motion::MovingSet;
 use super::objects::ObjectBvh;
-use super::triangle::{self, RayShear};
+use super::triangle::{self, RayShear, Tri4};
 use super::Accel;
 use crate::geometry::{gamma, Aabb, Hit, Ray};
 use crate::scene::Scene;
@@ -37,7 +39,7 @@ const PLANE_TEST_MIN_CELLS: usize = 2;
 
 pub struct GridAccel {
     scene: Arc<Scene>,
-    /// World-space vertices, by triangle index.
+    /// World-space vertices, by triangle index (build input only: emptied once the cells are packed).
     tris: Vec<[Vec3; 3]>,
     ids: Vec<TriId>,
     /// Grid bounds (the triangles' bounds, padded).
@@ -48,10 +50,15 @@ pub struct GridAccel {
     inv_cell_size: Vec3,
     /// Padding added to every triangle box before insertion.
     pad: f32,
-    /// Per cell (x fastest), the range `offsets[c]..offsets[c + 1]` of `refs`; `cells + 1` entries.
+    /// Per cell (x fastest), the range `offsets[c]..offsets[c + 1]` of `packets`; `cells + 1` entries.
     offsets: Vec<u32>,
-    /// Triangle indices of every cell, ascending within a cell.
-    refs: Vec<u32>,
+    /// Every cell's triangles, ascending by index, four to a packet (a cell's last packet may have
+    /// unused lanes, which never hit).
+    packets: Vec<Tri4>,
+    /// The triangle index of each packet lane (`u32::MAX` for unused lanes), for the mailbox and ids.
+    lanes: Vec<[u32; 4]>,
+    /// Triangle references over all cells.
+    entries: usize,
     /// The scene's CSG objects, tested after the triangles.
     objects: ObjectBvh,
     /// Instances that move during the shutter (absent for static scenes).
@@ -93,7 +100,9 @@ impl GridAccel {
                 inv_cell_size: Vec3::ZERO,
                 pad: 0.0,
                 offsets: vec![0, 0],
-                refs: Vec::new(),
+                packets: Vec::new(),
+                lanes: Vec::new(),
+                entries: 0,
                 moving: None,
             };
         }
@@ -121,7 +130,9 @@ impl GridAccel {
             inv_cell_size,
             pad,
             offsets: Vec::new(),
-            refs: Vec::new(),
+            packets: Vec::new(),
+            lanes: Vec::new(),
+            entries: 0,
             moving: None,
         };
         grid.fill();
@@ -129,7 +140,7 @@ impl GridAccel {
     }
 
     /// Count pass, prefix sum, fill pass, then each cell's list sorted (so the layout, and the order
-    /// in which ties are met, never depends on thread scheduling).
+    /// in which ties are met, never depends on thread scheduling) and packed four to a packet.
     fn fill(&mut self) {
         let cells = self.cell_count();
         let counts: Vec<AtomicU32> = (0..cells).map(|_| AtomicU32::new(0)).collect();
@@ -180,8 +191,40 @@ impl GridAccel {
                 block[s..e].sort_unstable();
             }
         });
-        self.offsets = offsets;
-        self.refs = refs;
+        // Pack every cell's list into packets of four, in blocks of cells.
+        let pack = |c0: usize, c1: usize| {
+            let mut out = Vec::new();
+            for c in c0..c1 {
+                let list = &refs[offsets[c] as usize..offsets[c + 1] as usize];
+                for chunk in list.chunks(4) {
+                    let mut tris = [[Vec3::ZERO; 3]; 4];
+                    let mut lanes = [u32::MAX; 4];
+                    for (lane, &i) in chunk.iter().enumerate() {
+                        tris[lane] = self.tris[i as usize];
+                        lanes[lane] = i;
+                    }
+                    out.push((Tri4::new(&tris[..chunk.len()]), lanes));
+                }
+            }
+            out
+        };
+        let (packets, lanes): (Vec<Tri4>, Vec<[u32; 4]>) = (0..cells.div_ceil(BLOCK))
+            .into_par_iter()
+            .flat_map_iter(|b| pack(b * BLOCK, ((b + 1) * BLOCK).min(cells)))
+            .unzip();
+        let mut packet_offsets = Vec::with_capacity(cells + 1);
+        let mut n = 0u32;
+        packet_offsets.push(0);
+        for c in 0..cells {
+            n += (offsets[c + 1] - offsets[c]).div_ceil(4);
+            packet_offsets.push(n);
+        }
+        debug_assert_eq!(n as usize, packets.len());
+        self.entries = refs.len();
+        self.offsets = packet_offsets;
+        self.packets = packets;
+        self.lanes = lanes;
+        self.tris = Vec::new();
     }
 
     /// Calls `f` with every cell that the padded box of `t` overlaps and, for triangles spanning
@@ -241,7 +284,7 @@ impl GridAccel {
 
     /// Triangle references over all cells (a triangle counts once per cell it is listed in).
     pub fn entry_count(&self) -> usize {
-        self.refs.len()
+        self.entries
     }
 
     /// Cells holding at least one triangle.
@@ -253,7 +296,8 @@ impl GridAccel {
         self.tris.len() * std::mem::size_of::<[Vec3; 3]>()
             + self.ids.len() * std::mem::size_of::<TriId>()
             + self.offsets.len() * 4
-            + self.refs.len() * 4
+            + self.packets.len() * std::mem::size_of::<Tri4>()
+            + self.lanes.len() * std::mem::size_of::<[u32; 4]>()
             + self.moving.as_ref().map_or(0, |m| m.memory_bytes())
     }
 
@@ -268,7 +312,7 @@ impl GridAccel {
     #[inline(always)]
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
     fn traverse(&self, ray: &Ray, any: bool) -> Option<Hit> {
-        if self.refs.is_empty() {
+        if self.packets.is_empty() {
             return None;
         }
         let o = ray.o.to_array();
@@ -336,29 +380,45 @@ impl GridAccel {
         loop {
             let c = ((cell[2] * ny + cell[1]) * nx + cell[0]) as usize;
             let (s, e) = (self.offsets[c] as usize, self.offsets[c + 1] as usize);
-            for &id in &self.refs[s..e] {
-                let slot = id as usize % MAILBOX;
-                if mailbox[slot] == id {
+            for p in s..e {
+                // Lanes whose triangle was tested already (or unused lanes) are left out.
+                let lanes = self.lanes[p];
+                let mut live = 0u32;
+                for (l, &id) in lanes.iter().enumerate() {
+                    let slot = id as usize % MAILBOX;
+                    if id == u32::MAX || mailbox[slot] == id {
+                        continue;
+                    }
+                    mailbox[slot] = id;
+                    live |= 1 << l;
+                }
+                if live == 0 {
                     continue;
                 }
-                mailbox[slot] = id;
-                let [a, b, c] = self.tris[id as usize];
-                if let Some(h) = triangle::intersect(ray.o, &sh, a, b, c, ray.t_min, t_max) {
-                    let tid = self.ids[id as usize];
-                    if !tid.accepts(&self.scene, h.u, h.v, ray) {
+                let h = triangle::intersect4(ray.o, &sh, &self.packets[p], ray.t_min, t_max);
+                let mut mask = h.mask & live;
+                while mask != 0 {
+                    let lane = mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    // t_max shrinks as lanes are accepted: later, farther lanes drop out.
+                    if !(h.t[lane] < t_max) {
+                        continue;
+                    }
+                    let tid = self.ids[lanes[lane] as usize];
+                    if !tid.accepts(&self.scene, h.u[lane], h.v[lane], ray) {
                         continue;
                     }
                     let hit = Hit {
-                        t: h.t,
-                        u: h.u,
-                        v: h.v,
+                        t: h.t[lane],
+                        u: h.u[lane],
+                        v: h.v[lane],
                         inst: tid.inst(),
                         prim: tid.prim,
                     };
                     if any {
                         return Some(hit);
                     }
-                    t_max = h.t;
+                    t_max = hit.t;
                     best = Some(hit);
                 }
             }
