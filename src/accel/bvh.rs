@@ -471,19 +471,15 @@ struct Collapsed {
 fn pack_leaf(src: &Source, leaf: &Node, out: &mut Collapsed) -> u32 {
     let first = out.packets.len() as u32;
     let refs = &src.order[leaf.index as usize..(leaf.index + leaf.count) as usize];
-    for chunk in refs.chunks(4) {
-        let mut tris = [[Vec3::ZERO; 3]; 4];
-        for (t, &i) in tris.iter_mut().zip(chunk) {
-            *t = src.tris[i as usize];
-        }
-        out.packets.push(Tri4::new(&tris[..chunk.len()]));
-        for lane in 0..4 {
-            out.ids.push(
-                chunk
-                    .get(lane)
-                    .map_or(TriId::NONE, |&i| src.ids[i as usize]),
-            );
-        }
+    for (packet, lanes) in Tri4::packets(refs, src.tris) {
+        out.packets.push(packet);
+        out.ids.extend(lanes.map(|i| {
+            if i == u32::MAX {
+                TriId::NONE
+            } else {
+                src.ids[i as usize]
+            }
+        }));
     }
     first
 }

@@ -198,15 +198,7 @@ impl GridAccel {
             let mut out = Vec::new();
             for c in c0..c1 {
                 let list = &refs[offsets[c] as usize..offsets[c + 1] as usize];
-                for chunk in list.chunks(4) {
-                    let mut tris = [[Vec3::ZERO; 3]; 4];
-                    let mut lanes = [u32::MAX; 4];
-                    for (lane, &i) in chunk.iter().enumerate() {
-                        tris[lane] = self.tris[i as usize];
-                        lanes[lane] = i;
-                    }
-                    out.push((Tri4::new(&tris[..chunk.len()]), lanes));
-                }
+                out.extend(Tri4::packets(list, &self.tris));
             }
             out
         };

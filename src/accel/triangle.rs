@@ -276,6 +276,23 @@ impl Tri4 {
         }
         Self { p }
     }
+
+    /// The triangles `tris[i]` for `i` in `indices`, in order, four to a packet, each packet with
+    /// its lanes' indices (`u32::MAX` for the unused lanes of the last one, which never hit).
+    pub fn packets<'a>(
+        indices: &'a [u32],
+        tris: &'a [[Vec3; 3]],
+    ) -> impl Iterator<Item = (Tri4, [u32; 4])> + 'a {
+        indices.chunks(4).map(move |chunk| {
+            let mut packet = [[Vec3::ZERO; 3]; 4];
+            let mut lanes = [u32::MAX; 4];
+            for (lane, &i) in chunk.iter().enumerate() {
+                packet[lane] = tris[i as usize];
+                lanes[lane] = i;
+            }
+            (Tri4::new(&packet[..chunk.len()]), lanes)
+        })
+    }
 }
 
 /// Hits of up to four triangles: a bit per lane that hit (`mask`), and per lane the distance and
