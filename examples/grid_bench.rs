@@ -41,7 +41,8 @@ fn room_rays(n: usize, seed: u64) -> Vec<Ray> {
         .into_par_iter()
         .map(|i| {
             let h = |k: u64| {
-                (glint::sample::mix64(seed ^ glint::sample::mix64(i as u64 * 8 + k)) >> 40) as f32
+                (glint::geometry::mix64(seed ^ glint::geometry::mix64(i as u64 * 8 + k)) >> 40)
+                    as f32
                     / (1u64 << 24) as f32
             };
             let dir = |a: f32, b: f32| {

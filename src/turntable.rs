@@ -14,9 +14,9 @@ use indicatif::ProgressBar;
 
 use crate::accel::Accel;
 use crate::film::{self, Format, Image};
+use crate::geometry::mix64;
 use crate::geometry::Aabb;
 use crate::render::{self, RenderSettings};
-use crate::sample::mix64;
 use crate::scene::{defaults, Camera, Light, Scene};
 
 /// Default camera elevation above the orbit plane, in degrees.

@@ -260,7 +260,8 @@ fn secondary_rays_leave_csg_surfaces_cleanly() {
 fn a_moving_csg_object_streaks_by_its_displacement() {
     use glam::Vec4;
     use glint::film::filter::FilterKind;
-    use glint::scene::{Material, Motion};
+    use glint::geometry::Motion;
+    use glint::scene::Material;
     let (size, yfov, side, depth, shift) = (96usize, 0.5f32, 0.1f32, 3.0f32, 0.2f32);
     let h = 0.5 * side;
     let slab = Node::primitive(

@@ -175,7 +175,7 @@ fn a_moving_camera_streaks_a_still_object() {
     });
     assert!(!scene.has_motion());
     let mut cam = camera();
-    cam.motion = Some(glint::scene::Motion {
+    cam.motion = Some(glint::geometry::Motion {
         steps: vec![
             cam.to_world,
             Mat4::from_translation(Vec3::X * shift) * cam.to_world,

@@ -10,12 +10,12 @@ use std::sync::Arc;
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::f4::F4;
 use super::flat::{self, TriId};
 use super::motion::MovingSet;
 use super::objects::ObjectBvh;
-use super::triangle::{self, RayShear, Tri4};
 use super::Accel;
+use crate::geometry::f4::F4;
+use crate::geometry::triangle::{self, RayShear, Tri4};
 use crate::geometry::{gamma, Aabb, Hit, Ray};
 use crate::scene::Scene;
 

@@ -5,8 +5,8 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::Accel;
+use crate::geometry::mix64;
 use crate::geometry::{Hit, Ray};
-use crate::sample::mix64;
 use crate::scene::{AlphaMode, Scene};
 
 /// Relative distance tolerance under which two hits count as the same.
@@ -39,7 +39,12 @@ pub fn random_rays(scene: &Scene, n: usize, seed: u64) -> Vec<Ray> {
             let h = |k: u64| unit(mix64(seed ^ mix64(i as u64 * 8 + k)));
             let dir = sphere_dir(h(0), h(1));
             if i % 4 == 3 || total == 0 {
-                let o = bounds.min + bounds.extent() * Vec3::new(h(2), h(3), h(4));
+                // The box grown by 1% of the diagonal: in a flat scene (MeshPrimitiveModes) the bounds
+                // themselves are a plane, and an origin on a triangle's plane is a tie at t = 0 that
+                // Embree's closed interval counts and the Rust backends' open one does not.
+                let pad = Vec3::splat(0.01 * radius);
+                let o =
+                    bounds.min - pad + (bounds.extent() + 2.0 * pad) * Vec3::new(h(2), h(3), h(4));
                 return Ray::new(o, dir);
             }
             let k = ((h(2) as f64 * total as f64) as usize).min(total - 1);

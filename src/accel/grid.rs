@@ -21,8 +21,8 @@ use rayon::prelude::*;
 use super::flat::{flatten, TriId};
 use super::motion::MovingSet;
 use super::objects::ObjectBvh;
-use super::triangle::{self, RayShear, Tri4};
 use super::Accel;
+use crate::geometry::triangle::{self, RayShear, Tri4};
 use crate::geometry::{gamma, Aabb, Hit, Ray};
 use crate::scene::Scene;
 

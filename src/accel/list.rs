@@ -7,8 +7,8 @@ use std::sync::Arc;
 use glam::Vec3;
 
 use super::flat::TriId;
-use super::triangle::{self, RayShear};
 use super::Accel;
+use crate::geometry::triangle::{self, RayShear};
 use crate::geometry::{gamma, Aabb, Hit, Ray};
 use crate::scene::Scene;
 

@@ -5,7 +5,6 @@ pub mod bvh;
 pub mod compare;
 #[cfg(feature = "embree")]
 pub mod embree;
-mod f4;
 pub mod flat;
 pub mod grid;
 pub mod list;
@@ -15,7 +14,6 @@ pub mod objects;
 pub mod obvhs;
 #[cfg(test)]
 mod testing;
-pub mod triangle;
 
 use std::fmt;
 use std::str::FromStr;

@@ -124,7 +124,8 @@ fn hits_box(b: &Aabb, ray: &Ray, t_max: f32) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{generate, Instance, Motion};
+    use crate::geometry::Motion;
+    use crate::scene::{generate, Instance};
     use glam::{Mat4, Vec3};
 
     #[test]

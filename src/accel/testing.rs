@@ -1,7 +1,7 @@
 //! Helpers for the accelerators' unit tests: a brute-force reference and a small deterministic RNG.
 //! Compiled only for tests.
 
-use super::triangle::{self, RayShear};
+use crate::geometry::triangle::{self, RayShear};
 use crate::geometry::Ray;
 use std::sync::Arc;
 

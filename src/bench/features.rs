@@ -11,9 +11,10 @@ use indicatif::ProgressBar;
 use super::rays::load_input;
 use crate::accel::{self, Backend};
 use crate::film::Image;
+use crate::geometry::Motion;
 use crate::render::{self, RenderSettings};
 use crate::scene::features::Features;
-use crate::scene::{defaults, Camera, Lens, Material, Motion, Scene};
+use crate::scene::{defaults, Camera, Lens, Material, Scene};
 
 /// One variant of the scene: what was forced, build and render time (best of the repeats), and how
 /// far its image is from the derived one.

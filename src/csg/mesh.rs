@@ -4,9 +4,8 @@
 
 use glam::Vec3;
 
-use crate::accel::triangle::{self, RayShear};
+use crate::geometry::triangle::{self, RayShear};
 use crate::geometry::Aabb;
-use crate::scene::Mesh;
 
 /// Most crossings of one line with one mesh that are kept; a list that would need more keeps the
 /// nearest and reports the rest as unknown (see `Intervals::limit`).
@@ -38,6 +37,11 @@ impl PartialEq for SolidMesh {
     }
 }
 
+/// A mesh that cannot bound a solid.
+#[derive(Debug, thiserror::Error)]
+#[error("mesh '{0}' is not closed (every edge must join exactly two triangles) and cannot be a CSG operand")]
+pub struct NotClosed(pub String);
+
 /// One crossing: distance, triangle and whether the triangle's normal faces against the line.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Crossing {
@@ -47,23 +51,22 @@ pub struct Crossing {
 }
 
 impl SolidMesh {
-    /// The solid bounded by `mesh`; fails when the mesh is not closed (its inside would be undefined).
-    pub fn new(mesh: &Mesh) -> Result<Self, String> {
+    /// The solid bounded by the triangles `indices` over `positions`; fails when they are not closed
+    /// (its inside would be undefined).
+    pub fn new(name: &str, positions: &[Vec3], indices: &[[u32; 3]]) -> Result<Self, NotClosed> {
         let mut edges = std::collections::HashMap::<(u32, u32), u32>::new();
-        for t in &mesh.indices {
+        for t in indices {
             for k in 0..3 {
                 let (a, b) = (t[k], t[(k + 1) % 3]);
                 *edges.entry((a.min(b), a.max(b))).or_default() += 1;
             }
         }
-        if mesh.indices.is_empty() || edges.values().any(|&n| n != 2) {
-            return Err(format!(
-                "mesh '{}' is not closed (every edge must join exactly two triangles) and cannot be a CSG operand",
-                mesh.name
-            ));
+        if indices.is_empty() || edges.values().any(|&n| n != 2) {
+            return Err(NotClosed(name.to_string()));
         }
-        let mut tris: Vec<[Vec3; 3]> = (0..mesh.indices.len() as u32)
-            .map(|i| mesh.triangle(i))
+        let mut tris: Vec<[Vec3; 3]> = indices
+            .iter()
+            .map(|t| t.map(|i| positions[i as usize]))
             .collect();
         let mut nodes = vec![MNode {
             bounds: Aabb::EMPTY,
@@ -72,7 +75,7 @@ impl SolidMesh {
         }];
         build(&mut tris, 0, 0, &mut nodes);
         Ok(Self {
-            name: mesh.name.clone(),
+            name: name.to_string(),
             bounds: nodes[0].bounds,
             tris,
             nodes,

@@ -7,17 +7,15 @@
 
 pub mod mesh;
 pub mod shape;
-pub mod spec;
 
 use std::sync::Arc;
 
 use glam::{Affine3A, Mat3, Mat4, Vec3};
 
+use crate::geometry::Motion;
 use crate::geometry::{Aabb, Ray};
-use crate::scene::Motion;
 pub use mesh::SolidMesh;
 pub use shape::Shape;
-pub use spec::NodeSpec;
 
 /// Most intervals a list holds. A list that would grow past it keeps its nearest `CAPACITY`
 /// intervals and records where the first dropped one began as its `limit`: it is exact before the
@@ -246,7 +244,7 @@ impl Intervals {
     }
 }
 
-/// The runtime CSG tree, as the scene description gives it (see `NodeSpec`): primitives and n-ary
+/// The runtime CSG tree, as the scene description gives it (see `scene::desc::csg::NodeSpec`): primitives and n-ary
 /// operations, each with its own transform (object to parent).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Node {

@@ -493,7 +493,7 @@ fn closed_mesh_operand_matches_the_triangle_bvh_and_the_analytic_box() {
     use std::sync::Arc;
     // Alone, a mesh operand finds what the BVH finds over the same triangles, from outside and inside.
     let ico = generate::icosphere(3, 0.1);
-    let solid = Arc::new(SolidMesh::new(&ico).unwrap());
+    let solid = Arc::new(ico.to_solid().unwrap());
     let obj = CsgObject::new(
         Node::Mesh {
             mesh: solid,
@@ -540,7 +540,7 @@ fn closed_mesh_operand_matches_the_triangle_bvh_and_the_analytic_box() {
     let meshed = CsgObject::new(
         Node::difference(vec![
             Node::Mesh {
-                mesh: Arc::new(SolidMesh::new(&cube).unwrap()),
+                mesh: Arc::new(cube.to_solid().unwrap()),
                 transform: Mat4::IDENTITY,
                 material: 0,
             },
@@ -585,7 +585,7 @@ fn closed_mesh_operand_matches_the_triangle_bvh_and_the_analytic_box() {
     }
     assert!(same > 1000, "{same}");
     // An open mesh has no inside.
-    assert!(SolidMesh::new(&generate::quad_grid(2)).is_err());
+    assert!(generate::quad_grid(2).to_solid().is_err());
 }
 
 #[test]

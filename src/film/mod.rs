@@ -9,6 +9,8 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Context, Result};
 use glam::Vec4;
 
+use crate::geometry::colour::linear_to_srgb;
+
 /// A linear-light RGBA image, row-major, first row at the top.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Image {
@@ -120,22 +122,6 @@ impl Image {
             height,
             pixels: values.iter().map(|&v| Vec4::new(v, v, v, 1.0)).collect(),
         }
-    }
-}
-
-pub fn srgb_to_linear(c: f32) -> f32 {
-    if c <= 0.04045 {
-        c / 12.92
-    } else {
-        ((c + 0.055) / 1.055).powf(2.4)
-    }
-}
-
-pub fn linear_to_srgb(c: f32) -> f32 {
-    if c <= 0.003_130_8 {
-        c * 12.92
-    } else {
-        1.055 * c.powf(1.0 / 2.4) - 0.055
     }
 }
 
@@ -258,14 +244,6 @@ pub fn read_exr(path: &Path) -> Result<Image> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn srgb_round_trip() {
-        for i in 0..=255 {
-            let c = i as f32 / 255.0;
-            assert!((linear_to_srgb(srgb_to_linear(c)) - c).abs() < 1e-5);
-        }
-    }
 
     #[test]
     fn exr_round_trip_is_exact_and_png_is_written() {

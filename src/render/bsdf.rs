@@ -6,35 +6,7 @@ use std::f32::consts::{FRAC_1_PI, PI};
 
 use glam::{Vec2, Vec3};
 
-/// An orthonormal frame with `n` as local +Z.
-#[derive(Clone, Copy, Debug)]
-pub struct Frame {
-    pub t: Vec3,
-    pub b: Vec3,
-    pub n: Vec3,
-}
-
-impl Frame {
-    /// Any frame around `n` (Duff et al. 2017, branchless and continuous except at one pole).
-    pub fn from_normal(n: Vec3) -> Self {
-        let sign = 1.0f32.copysign(n.z);
-        let a = -1.0 / (sign + n.z);
-        let b = n.x * n.y * a;
-        Self {
-            t: Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
-            b: Vec3::new(b, sign + n.y * n.y * a, -n.y),
-            n,
-        }
-    }
-
-    pub fn to_local(&self, v: Vec3) -> Vec3 {
-        Vec3::new(v.dot(self.t), v.dot(self.b), v.dot(self.n))
-    }
-
-    pub fn to_world(&self, v: Vec3) -> Vec3 {
-        self.t * v.x + self.b * v.y + self.n * v.z
-    }
-}
+use crate::geometry::Frame;
 
 /// GGX alpha below which the specular lobes are perfectly smooth (delta lobes): glTF roughness under
 /// about 0.03 renders as a true mirror or clear glass.
@@ -436,7 +408,7 @@ mod tests {
     use super::*;
 
     fn hash(i: u32) -> f32 {
-        (crate::sample::mix64(i as u64) >> 40) as f32 / (1u64 << 24) as f32
+        (crate::geometry::mix64(i as u64) >> 40) as f32 / (1u64 << 24) as f32
     }
 
     /// The albedo from `sample` against uniform integration of `eval` over the whole sphere, for one

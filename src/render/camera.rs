@@ -3,9 +3,10 @@
 
 use glam::{Mat4, Vec2, Vec3};
 
+use crate::geometry::Motion;
 use crate::geometry::Ray;
 use crate::sample::{Dim, Sampler};
-use crate::scene::{Camera, Lens, Motion, Projection};
+use crate::scene::{Camera, Lens, Projection};
 
 /// A camera fixed to an image size, ready to generate rays.
 #[derive(Clone, Debug)]

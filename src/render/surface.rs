@@ -3,7 +3,8 @@
 
 use glam::{Vec2, Vec3, Vec4Swizzles};
 
-use super::bsdf::{Bsdf, Frame};
+use super::bsdf::Bsdf;
+use crate::geometry::Frame;
 use crate::geometry::{Hit, Ray};
 use crate::scene::{Material, Scene, TexRef};
 

@@ -10,6 +10,8 @@ mod stratified;
 
 use glam::Vec2;
 
+use crate::geometry::mix64;
+
 pub use sobol::{owen_scramble, sobol_u32, SobolSampler};
 pub use stratified::{permutation_element, StratifiedSampler};
 
@@ -190,13 +192,6 @@ pub(crate) fn pixel_key(seed: u64, x: u32, y: u32) -> u64 {
 /// 24 random bits of a hash as a float in [0, 1).
 pub(crate) fn unit_float(h: u64) -> f32 {
     (h >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
-}
-
-/// SplitMix64's finaliser: a bijective 64-bit mix with good avalanche.
-pub fn mix64(mut z: u64) -> u64 {
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
 }
 
 #[cfg(test)]

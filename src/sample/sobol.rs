@@ -5,7 +5,8 @@
 
 use glam::Vec2;
 
-use super::{mix64, pixel_key, Dim, Sampler};
+use super::{pixel_key, Dim, Sampler};
+use crate::geometry::mix64;
 
 /// Generator matrices (as direction numbers, most significant bit first) of Sobol dimensions 0 and 1.
 #[cfg(test)]

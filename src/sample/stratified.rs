@@ -4,7 +4,8 @@
 
 use glam::Vec2;
 
-use super::{mix64, pixel_key, unit_float, Dim, Sampler};
+use super::{pixel_key, unit_float, Dim, Sampler};
+use crate::geometry::mix64;
 
 #[derive(Clone, Debug)]
 pub struct StratifiedSampler {

@@ -109,7 +109,8 @@ impl Features {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{generate, Lens, Material, Motion};
+    use crate::geometry::Motion;
+    use crate::scene::{generate, Lens, Material};
 
     #[test]
     fn a_static_pinhole_opaque_scene_skips_motion_lens_and_transmission() {

@@ -7,7 +7,7 @@ use std::collections::HashMap;
 use glam::{Mat4, Vec3, Vec4};
 
 use super::{Instance, Material, Mesh, Scene};
-use crate::csg::{CsgObject, Node, Shape, SolidMesh};
+use crate::csg::{CsgObject, Node, Shape};
 
 /// A unit icosphere with `subdivisions` levels of 4:1 splits (20 * 4^n triangles), optionally displaced
 /// radially by a smooth bumpy function of amplitude `bump` (0 for a sphere).
@@ -284,7 +284,9 @@ pub fn csg_showcase() -> Scene {
             Node::difference(vec![
                 Node::Mesh {
                     mesh: std::sync::Arc::new(
-                        SolidMesh::new(&icosphere(3, 0.0)).expect("an icosphere is closed"),
+                        icosphere(3, 0.0)
+                            .to_solid()
+                            .expect("an icosphere is closed"),
                     ),
                     transform: Mat4::from_scale(Vec3::splat(0.7)),
                     material: 4,

@@ -2104,7 +2104,15 @@ mod tests {
         ];
         for f in &files {
             let name = f.file_name().unwrap().to_str().unwrap();
-            let s = Scene::load(f).unwrap_or_else(|e| panic!("{e}"));
+            let s = match Scene::load(f) {
+                Ok(s) => s,
+                // Files that need an extension glint does not read yet are refused by design.
+                Err(e) if e.to_string().contains("requires unsupported extension") => {
+                    println!("{name}: refused: {e}");
+                    continue;
+                }
+                Err(e) => panic!("{e}"),
+            };
             println!(
                 "{name}: {:?} meshes={} instances={} warnings={:?}",
                 s.stats,

@@ -18,8 +18,9 @@ use std::path::{Path, PathBuf};
 use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 
 use crate::csg::CsgObject;
+use crate::geometry::Motion;
 use crate::geometry::{Aabb, Hit, Ray};
-pub use animation::{Animation, Motion};
+pub use animation::Animation;
 pub use envmap::EnvMap;
 pub use error::LoadError;
 pub use texture::{Texture, Wrap};
@@ -40,6 +41,11 @@ pub struct Mesh {
 }
 
 impl Mesh {
+    /// The solid this closed mesh bounds, as a CSG operand.
+    pub fn to_solid(&self) -> Result<crate::csg::SolidMesh, crate::csg::mesh::NotClosed> {
+        crate::csg::SolidMesh::new(&self.name, &self.positions, &self.indices)
+    }
+
     pub fn triangle(&self, prim: u32) -> [Vec3; 3] {
         let [a, b, c] = self.indices[prim as usize];
         [
@@ -726,7 +732,7 @@ impl Scene {
 /// A uniform number in [0, 1) from the ray's seed and the triangle: the same in every backend and run.
 fn blend_hash(ray: &Ray, inst: u32, prim: u32) -> f32 {
     let key = (ray.seed as u64) << 32 ^ (inst as u64) << 24 ^ prim as u64;
-    (crate::sample::mix64(key ^ 0x9E37_79B9_7F4A_7C15) >> 40) as f32 / (1u64 << 24) as f32
+    (crate::geometry::mix64(key ^ 0x9E37_79B9_7F4A_7C15) >> 40) as f32 / (1u64 << 24) as f32
 }
 
 #[cfg(test)]

@@ -50,7 +50,7 @@ fn srgb_table() -> &'static [f32; 256] {
     TABLE.get_or_init(|| {
         let mut t = [0.0; 256];
         for (i, v) in t.iter_mut().enumerate() {
-            *v = crate::film::srgb_to_linear(i as f32 / 255.0);
+            *v = crate::geometry::colour::srgb_to_linear(i as f32 / 255.0);
         }
         t
     })

@@ -9,6 +9,8 @@ use glam::Vec3;
 use serde::Deserialize;
 use toml::Spanned;
 
+pub mod csg;
+
 use super::transform::TransformSpec;
 use super::{AlphaMode, Camera, LoadError, Material, Scene};
 use crate::film::filter::FilterKind;
@@ -62,7 +64,7 @@ struct Desc {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct ObjectDesc {
-    csg: crate::csg::spec::NodeSpec,
+    csg: csg::NodeSpec,
     material: Option<String>,
     #[serde(default)]
     transform: TransformSpec,
@@ -562,7 +564,8 @@ fn add_objects(
                     *p = inst.to_world.transform_point3(*p);
                 }
             }
-            let solid = crate::csg::SolidMesh::new(&mesh)
+            let solid = mesh
+                .to_solid()
                 .map_err(|e| fail(format!("mesh '{name}': {e}")))?;
             solids.insert(name, Arc::new(solid));
             used.push(k as u32);
@@ -585,7 +588,7 @@ fn add_objects(
             // as keep the linear interpolation within the motion tolerance.
             let end = end.to_mat4();
             let local = object.bounds().transformed(&start.inverse());
-            if let Some(m) = super::Motion::of_object(|u| blend(start, end, u), &local) {
+            if let Some(m) = crate::geometry::Motion::of_object(|u| blend(start, end, u), &local) {
                 object = object.with_motion(m);
             }
         }
@@ -596,8 +599,8 @@ fn add_objects(
 }
 
 /// The names of the meshes a CSG tree uses as operands.
-fn mesh_names(node: &crate::csg::spec::NodeSpec) -> Vec<String> {
-    use crate::csg::spec::KindSpec;
+fn mesh_names(node: &csg::NodeSpec) -> Vec<String> {
+    use csg::KindSpec;
     match &node.kind {
         KindSpec::Mesh(name) => vec![name.clone()],
         KindSpec::Union(k) | KindSpec::Intersection(k) | KindSpec::Difference(k) => {
@@ -673,7 +676,7 @@ impl LightDesc {
                             let n = facing(c, r.normal, r.look_at)?;
                             positive("size", w.min(h))?;
                             // Width along the horizontal most across the normal, height up.
-                            let frame = crate::render::bsdf::Frame::from_normal(n);
+                            let frame = crate::geometry::Frame::from_normal(n);
                             let across = if n.cross(Vec3::Y).length() > 1e-3 {
                                 Vec3::Y.cross(n).normalize()
                             } else {

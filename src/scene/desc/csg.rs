@@ -29,7 +29,7 @@ use serde::{Deserialize, Deserializer};
 
 use std::sync::Arc;
 
-use super::{Node, Op, Shape, SolidMesh};
+use crate::csg::{Node, Op, Shape, SolidMesh};
 use crate::scene::transform::TransformSpec;
 
 #[derive(Clone, Debug, PartialEq, Deserialize)]
@@ -438,7 +438,9 @@ mod tests {
     #[test]
     fn mesh_operands_resolve_by_name() {
         let cube = Arc::new(
-            SolidMesh::new(&crate::scene::generate::box_mesh(Vec3::ZERO, Vec3::ONE)).unwrap(),
+            crate::scene::generate::box_mesh(Vec3::ZERO, Vec3::ONE)
+                .to_solid()
+                .unwrap(),
         );
         let spec = parse("csg = { difference = [ { mesh = \"cube\", material = \"red\" }, { sphere = { radius = 0.5 } } ] }").unwrap();
         let meshes = |name: &str| (name == "cube").then(|| cube.clone());

@@ -1,7 +1,18 @@
-//! Small value types shared by every stage: rays, hits and axis-aligned boxes.
-//! They are `Copy` and carry no references, so accelerators and the integrator pass them by value.
+//! The bottom layer: small value types and the math every stage shares (rays, hits, boxes, frames,
+//! motion, the watertight triangle test, hashing, colour transfer). It uses no other glint module.
 
 use glam::Vec3;
+
+pub mod colour;
+pub(crate) mod f4;
+pub mod frame;
+pub mod hash;
+pub mod motion;
+pub mod triangle;
+
+pub use frame::Frame;
+pub use hash::mix64;
+pub use motion::Motion;
 
 /// gamma(n) of pbrt: a bound on the relative error of n floating-point operations (n ulps / 2, exact
 /// to first order), for conservative tests such as slab distances.
