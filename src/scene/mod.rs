@@ -9,6 +9,7 @@ pub mod error;
 pub mod features;
 pub mod generate;
 pub mod gltf;
+pub mod mesh;
 pub mod obj;
 pub mod texture;
 pub mod transform;
@@ -23,51 +24,8 @@ use crate::geometry::{Aabb, Hit, Ray};
 pub use animation::Animation;
 pub use envmap::EnvMap;
 pub use error::LoadError;
+pub use mesh::Mesh;
 pub use texture::{Texture, Wrap};
-
-/// A triangle mesh in its own object space, with one material (a glTF primitive, or an OBJ model).
-#[derive(Clone, Debug, Default)]
-pub struct Mesh {
-    pub name: String,
-    pub positions: Vec<Vec3>,
-    /// Per-vertex shading normals; always present (computed from the faces when the file has none).
-    pub normals: Vec<Vec3>,
-    /// Texture coordinates of set 0; empty when the file has none.
-    pub uvs: Vec<Vec2>,
-    /// Per-vertex tangents (xyz, w = bitangent sign); empty when the file has none.
-    pub tangents: Vec<Vec4>,
-    pub indices: Vec<[u32; 3]>,
-    pub material: u32,
-}
-
-impl Mesh {
-    /// The solid this closed mesh bounds, as a CSG operand.
-    pub fn to_solid(&self) -> Result<crate::csg::SolidMesh, crate::csg::mesh::NotClosed> {
-        crate::csg::SolidMesh::new(&self.name, &self.positions, &self.indices)
-    }
-
-    pub fn triangle(&self, prim: u32) -> [Vec3; 3] {
-        let [a, b, c] = self.indices[prim as usize];
-        [
-            self.positions[a as usize],
-            self.positions[b as usize],
-            self.positions[c as usize],
-        ]
-    }
-
-    pub fn bounds(&self) -> Aabb {
-        Aabb::from_points(self.positions.iter().copied())
-    }
-
-    /// Texture coordinates at barycentrics `(u, v)` of a triangle; zero when the mesh has none.
-    pub fn uv_at(&self, prim: u32, u: f32, v: f32) -> Vec2 {
-        if self.uvs.is_empty() {
-            return Vec2::ZERO;
-        }
-        let [a, b, c] = self.indices[prim as usize];
-        self.uvs[a as usize] * (1.0 - u - v) + self.uvs[b as usize] * u + self.uvs[c as usize] * v
-    }
-}
 
 /// One placement of a mesh in the world.
 #[derive(Clone, Debug)]

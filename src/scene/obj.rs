@@ -15,7 +15,6 @@ use std::path::{Path, PathBuf};
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
-use super::gltf::clean_mesh;
 use super::{AlphaMode, Instance, LoadError, Material, Mesh, Scene, TexRef, Texture, Wrap};
 
 /// Loads an .obj file and the .mtl files it names. Never panics on malformed input.
@@ -150,7 +149,7 @@ fn load_inner(path: &Path) -> Result<Scene, LoadError> {
             indices,
             material,
         };
-        dropped += clean_mesh(&mut mesh);
+        dropped += mesh.clean();
         if mesh.indices.is_empty() {
             continue;
         }

@@ -1,0 +1,336 @@
+//! glTF 2.0 loader (.gltf with external or data-URI buffers, and .glb): the entry `load` and the walk
+//! of the node hierarchy that places meshes, lights and cameras.
+//!
+//! The `gltf` crate parses and validates the JSON; buffers are read through it too, but every accessor
+//! is read here (`accessor`), with its extent checked against its buffer view and buffer first, so that
+//! a malformed file becomes a `LoadError` naming the element instead of a panic. Each (mesh, primitive)
+//! pair becomes one `Mesh` (`mesh`); every node that uses it adds an `Instance`.
+
+mod accessor;
+mod animation;
+pub mod error;
+mod image;
+mod light;
+mod material;
+mod mesh;
+#[cfg(test)]
+mod tests;
+
+use std::collections::HashMap;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::Path;
+use std::rc::Rc;
+
+use glam::{Mat4, Vec3, Vec4};
+
+pub use error::GltfError;
+#[cfg(test)]
+pub(crate) use material::uv_transform;
+
+use super::{Camera, Instance, LoadError, Scene};
+
+/// Extensions glint understands well enough that a file may require them.
+const SUPPORTED_REQUIRED: &[&str] = &[
+    "KHR_lights_punctual",
+    "KHR_materials_emissive_strength",
+    "KHR_materials_transmission",
+    "KHR_materials_ior",
+    "KHR_materials_volume",
+    "KHR_texture_transform",
+];
+
+/// One morph target's position and normal displacements.
+type MorphTarget = (Vec<Vec3>, Vec<Vec3>);
+/// Per-vertex joints and weights of a skinned mesh.
+type SkinAttrs = (Vec<[u16; 4]>, Vec<Vec4>);
+
+/// Loads a .gltf or .glb file keeping its animation number `animation` (when it has animations).
+/// Never panics on malformed input: every problem is a `LoadError`.
+pub fn load(path: &Path, animation: usize) -> Result<Scene, LoadError> {
+    match catch_unwind(AssertUnwindSafe(|| load_inner(path, animation))) {
+        Ok(r) => r.map_err(|e| LoadError::new(path, e.to_string())),
+        Err(_) => Err(LoadError::new(
+            path,
+            "malformed glTF (the glTF reader failed on an inconsistent file)",
+        )),
+    }
+}
+
+fn load_inner(path: &Path, animation: usize) -> Result<Scene, GltfError> {
+    let bytes = std::fs::read(path).map_err(GltfError::Read)?;
+    let base = path.parent().unwrap_or_else(|| Path::new("."));
+    let (json_bytes, blob) = if bytes.starts_with(b"glTF") {
+        accessor::split_glb(&bytes)?
+    } else {
+        let json = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&bytes);
+        (json, None)
+    };
+    let doc = document(json_bytes)?;
+    let buffers = accessor::read_buffers(&doc, base, blob)?;
+    Loader {
+        doc: &doc,
+        buffers: &buffers,
+        base,
+        scene: Scene::default(),
+        prims: HashMap::new(),
+        textures: HashMap::new(),
+        images: HashMap::new(),
+        default_material: None,
+        dropped: 0,
+        animation,
+        skin_attrs: HashMap::new(),
+        morph_attrs: HashMap::new(),
+    }
+    .run()
+}
+
+/// The validated document of a JSON chunk, its required extensions checked against glint's.
+fn document(json: &[u8]) -> Result<gltf::Document, GltfError> {
+    let mut root: gltf::json::Root =
+        gltf::json::deserialize::from_slice(json).map_err(GltfError::Json)?;
+    if let Some(ext) = root
+        .extensions_required
+        .iter()
+        .find(|e| !SUPPORTED_REQUIRED.contains(&e.as_str()))
+    {
+        return Err(GltfError::UnsupportedExtension(ext.clone()));
+    }
+    // The crate's validation refuses required extensions it has no code for (KHR_materials_volume);
+    // glint has checked them above.
+    root.extensions_required.clear();
+    let fallback = root.clone();
+    match gltf::Document::from_json(root) {
+        Ok(doc) => Ok(doc),
+        // POSITION's min/max are required by the spec but unused here: tolerate files without them.
+        Err(gltf::Error::Validation(errs))
+            if errs.iter().all(|(p, e)| {
+                matches!(e, gltf::json::validation::Error::Missing)
+                    && (p.as_str().ends_with(".min") || p.as_str().ends_with(".max"))
+            }) =>
+        {
+            Ok(gltf::Document::from_json_without_validation(fallback))
+        }
+        Err(gltf::Error::Validation(errs)) => Err(GltfError::Validation {
+            first: errs
+                .iter()
+                .take(5)
+                .map(|(p, e)| format!("{p}: {e}"))
+                .collect(),
+            total: errs.len(),
+        }),
+        Err(e) => Err(GltfError::Document(e)),
+    }
+}
+
+struct Loader<'a> {
+    doc: &'a gltf::Document,
+    buffers: &'a [Vec<u8>],
+    base: &'a Path,
+    scene: Scene,
+    /// (mesh, primitive) -> index in `scene.meshes`, or None when the primitive was skipped.
+    prims: HashMap<(usize, usize), Option<u32>>,
+    /// (glTF texture, sRGB) -> index in `scene.textures`, or None when its image failed.
+    textures: HashMap<(usize, bool), Option<u32>>,
+    images: HashMap<usize, Option<Rc<image::Pixels>>>,
+    default_material: Option<u32>,
+    dropped: usize,
+    /// Which animation to keep.
+    animation: usize,
+    /// Joints and weights of skinned scene meshes, by mesh index.
+    skin_attrs: HashMap<u32, SkinAttrs>,
+    /// Morph targets of scene meshes, by mesh index.
+    morph_attrs: HashMap<u32, Vec<MorphTarget>>,
+}
+
+/// What the node walk placed, for the animation: the hierarchy as reached from the roots, and what
+/// hangs from which node.
+#[derive(Default)]
+struct Placed {
+    parent_of: Vec<Option<u32>>,
+    /// (instance, node) of every instance.
+    instances: Vec<(u32, u32)>,
+    /// (camera, node) of every camera, by position in the file's camera list.
+    camera_nodes: Vec<(usize, u32)>,
+    /// (instance, scene mesh, glTF skin) of every skinned primitive placed.
+    skinned: Vec<(u32, u32, usize)>,
+    /// (scene mesh, node, default weights) of every primitive with morph targets placed.
+    morphed: Vec<(u32, u32, Vec<f32>)>,
+    /// (glTF camera, camera) in the order met.
+    cameras: Vec<(usize, Camera)>,
+}
+
+impl Loader<'_> {
+    fn run(mut self) -> Result<Scene, GltfError> {
+        let doc = self.doc;
+        for m in doc.materials() {
+            let mat = self.material(&m);
+            self.scene.materials.push(mat);
+        }
+        let mut placed = self.walk()?;
+        placed.cameras.sort_by_key(|(i, _)| *i);
+        // Camera nodes by position in the sorted list.
+        let cam_nodes: Vec<(u32, u32)> = placed
+            .cameras
+            .iter()
+            .enumerate()
+            .filter_map(|(k, (ci, _))| {
+                placed
+                    .camera_nodes
+                    .iter()
+                    .find(|(c, _)| c == ci)
+                    .map(|&(_, n)| (k as u32, n))
+            })
+            .collect();
+        self.scene.cameras = std::mem::take(&mut placed.cameras)
+            .into_iter()
+            .map(|(_, c)| c)
+            .collect();
+        self.scene.animation = self.file_animation(&placed, cam_nodes)?;
+        if self.dropped > 0 {
+            self.scene
+                .warnings
+                .push(format!("dropped {} degenerate triangles", self.dropped));
+        }
+        self.count_stats();
+        Ok(self.scene)
+    }
+
+    /// The roots of the hierarchy: the default scene's, else scene 0's, else every node that is
+    /// nobody's child.
+    fn roots(&self) -> Vec<usize> {
+        let doc = self.doc;
+        match doc.default_scene().or_else(|| doc.scenes().next()) {
+            Some(s) => s.nodes().map(|n| n.index()).collect(),
+            None => {
+                let mut is_child = vec![false; doc.nodes().len()];
+                for n in doc.nodes() {
+                    for c in n.children() {
+                        is_child[c.index()] = true;
+                    }
+                }
+                (0..is_child.len()).filter(|&i| !is_child[i]).collect()
+            }
+        }
+    }
+
+    /// Walks the hierarchy depth first from the roots, placing each node's meshes, light and camera
+    /// at its world transform; a node reached twice is placed once.
+    fn walk(&mut self) -> Result<Placed, GltfError> {
+        let nodes: Vec<gltf::Node> = self.doc.nodes().collect();
+        let mut visited = vec![false; nodes.len()];
+        let mut placed = Placed {
+            parent_of: vec![None; nodes.len()],
+            ..Placed::default()
+        };
+        let mut stack: Vec<(usize, Mat4)> = self
+            .roots()
+            .iter()
+            .rev()
+            .map(|&r| (r, Mat4::IDENTITY))
+            .collect();
+        while let Some((ni, parent)) = stack.pop() {
+            if visited[ni] {
+                self.scene.warnings.push(format!(
+                    "node {ni} is reached twice in the hierarchy (a cycle or a shared child); skipped the second time"
+                ));
+                continue;
+            }
+            visited[ni] = true;
+            let node = &nodes[ni];
+            let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+            for c in node.children().collect::<Vec<_>>().into_iter().rev() {
+                if !visited[c.index()] {
+                    placed.parent_of[c.index()] = Some(ni as u32);
+                }
+                stack.push((c.index(), world));
+            }
+            self.place_node(node, world, &mut placed)?;
+        }
+        Ok(placed)
+    }
+
+    /// Places what hangs from one node at its world transform.
+    fn place_node(
+        &mut self,
+        node: &gltf::Node,
+        world: Mat4,
+        placed: &mut Placed,
+    ) -> Result<(), GltfError> {
+        let ni = node.index();
+        let label = match node.name() {
+            Some(n) => format!("node {ni} ('{n}')"),
+            None => format!("node {ni}"),
+        };
+        if !world.is_finite() {
+            self.scene.warnings.push(format!(
+                "{label}: transform is not finite; its mesh, light and camera are skipped"
+            ));
+            return Ok(());
+        }
+        if let Some(mesh) = node.mesh() {
+            if world.determinant() == 0.0 {
+                self.scene.warnings.push(format!(
+                    "{label}: transform has zero scale; its mesh is skipped"
+                ));
+            } else {
+                self.place_mesh(node, &mesh, world, placed)?;
+            }
+        }
+        if let Some(light) = node.light() {
+            self.light(&light, world, &label);
+        }
+        if let Some(cam) = node.camera() {
+            placed.camera_nodes.push((cam.index(), ni as u32));
+            placed
+                .cameras
+                .push((cam.index(), light::camera(&cam, node, world)));
+        }
+        Ok(())
+    }
+
+    /// One instance of each primitive of a node's mesh.
+    fn place_mesh(
+        &mut self,
+        node: &gltf::Node,
+        mesh: &gltf::Mesh,
+        world: Mat4,
+        placed: &mut Placed,
+    ) -> Result<(), GltfError> {
+        let ni = node.index() as u32;
+        for prim in mesh.primitives() {
+            let Some(m) = self.primitive(mesh, &prim)? else {
+                continue;
+            };
+            if self.morph_attrs.contains_key(&m) {
+                let weights = node
+                    .weights()
+                    .or(mesh.weights())
+                    .map(<[f32]>::to_vec)
+                    .unwrap_or_default();
+                placed.morphed.push((m, ni, weights));
+            }
+            let instance = self.scene.instances.len() as u32;
+            if let Some(skin) = node.skin() {
+                placed.skinned.push((instance, m, skin.index()));
+            }
+            placed.instances.push((instance, ni));
+            self.scene.instances.push(Instance::new(m, world));
+        }
+        Ok(())
+    }
+
+    /// What the file held, for `glint info`.
+    fn count_stats(&mut self) {
+        let doc = self.doc;
+        let stats = &mut self.scene.stats;
+        stats.nodes = doc.nodes().len();
+        stats.meshes = doc.meshes().len();
+        stats.primitives = doc.meshes().map(|m| m.primitives().len()).sum();
+        stats.materials = doc.materials().len();
+        stats.textures = doc.textures().len();
+        stats.lights = doc.lights().map(|l| l.len()).unwrap_or(0);
+        stats.cameras = doc.cameras().len();
+        stats.animations = doc.animations().len();
+        self.scene.stats.triangles = self.scene.triangle_count();
+    }
+}
