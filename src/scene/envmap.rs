@@ -55,7 +55,7 @@ impl EnvMap {
     /// Loads a .exr or .hdr file; errors name the file and the problem. Non-finite or negative
     /// values are clamped to zero, since one of them would poison every pixel that sees it.
     pub fn load(path: &Path) -> Result<Self, LoadError> {
-        let err = |msg: String| LoadError::new(path, msg);
+        let err = |e: EnvMapError| LoadError::new(path, e.to_string());
         let ext = path
             .extension()
             .and_then(|e| e.to_str())
@@ -63,11 +63,7 @@ impl EnvMap {
         let (w, h, mut px) = match ext.as_deref() {
             Some("exr") => read_exr(path).map_err(err)?,
             Some("hdr") => read_hdr(path).map_err(err)?,
-            _ => {
-                return Err(err(
-                    "environment maps must be .exr or .hdr (lat-long, linear RGB)".into(),
-                ))
-            }
+            _ => return Err(err(EnvMapError::Format)),
         };
         for p in &mut px {
             *p = Vec3::from_array(
@@ -75,7 +71,7 @@ impl EnvMap {
                     .map(|c| if c.is_finite() { c.max(0.0) } else { 0.0 }),
             );
         }
-        Self::new(w, h, px).ok_or_else(|| err("the image is empty".into()))
+        Self::new(w, h, px).ok_or_else(|| err(EnvMapError::Empty))
     }
 
     /// The map turned by `angle` radians about +Y (counter-clockwise seen from above).
@@ -117,7 +113,22 @@ impl EnvMap {
     }
 }
 
-fn read_exr(path: &Path) -> Result<(usize, usize, Vec<Vec3>), String> {
+/// Why an environment map cannot be read.
+#[derive(Debug, thiserror::Error)]
+enum EnvMapError {
+    #[error("environment maps must be .exr or .hdr (lat-long, linear RGB)")]
+    Format,
+    #[error("the image is empty")]
+    Empty,
+    #[error("reading OpenEXR: {0}")]
+    Exr(exr::error::Error),
+    #[error("{0}")]
+    Open(std::io::Error),
+    #[error("reading Radiance HDR: {0}")]
+    Hdr(image::ImageError),
+}
+
+fn read_exr(path: &Path) -> Result<(usize, usize, Vec<Vec3>), EnvMapError> {
     use exr::prelude::{read_first_rgba_layer_from_file, Vec2};
     let img = read_first_rgba_layer_from_file(
         path,
@@ -129,7 +140,7 @@ fn read_exr(path: &Path) -> Result<(usize, usize, Vec<Vec3>), String> {
             px[y * *w + x] = Vec3::new(r, g, b)
         },
     )
-    .map_err(|e| format!("reading OpenEXR: {e}"))?;
+    .map_err(EnvMapError::Exr)?;
     let size = img.layer_data.size;
     Ok((
         size.width(),
@@ -138,12 +149,12 @@ fn read_exr(path: &Path) -> Result<(usize, usize, Vec<Vec3>), String> {
     ))
 }
 
-fn read_hdr(path: &Path) -> Result<(usize, usize, Vec<Vec3>), String> {
-    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+fn read_hdr(path: &Path) -> Result<(usize, usize, Vec<Vec3>), EnvMapError> {
+    let file = std::fs::File::open(path).map_err(EnvMapError::Open)?;
     let decoder = image::codecs::hdr::HdrDecoder::new(std::io::BufReader::new(file))
-        .map_err(|e| format!("reading Radiance HDR: {e}"))?;
+        .map_err(EnvMapError::Hdr)?;
     let img = image::DynamicImage::from_decoder(decoder)
-        .map_err(|e| format!("reading Radiance HDR: {e}"))?
+        .map_err(EnvMapError::Hdr)?
         .into_rgb32f();
     let (w, h) = (img.width() as usize, img.height() as usize);
     let px = img

@@ -37,9 +37,18 @@ struct TransformFields {
     matrix: Option<[f32; 16]>,
 }
 
+/// Why a scene file's transform is refused.
+#[derive(Debug, thiserror::Error)]
+pub enum TransformError {
+    #[error("transform: `matrix` cannot be combined with translate/rotate/scale")]
+    MatrixWithParts,
+    #[error("transform: values must be finite")]
+    NotFinite,
+}
+
 impl TryFrom<TransformFields> for TransformSpec {
-    type Error = String;
-    fn try_from(f: TransformFields) -> Result<Self, String> {
+    type Error = TransformError;
+    fn try_from(f: TransformFields) -> Result<Self, TransformError> {
         let t = TransformSpec {
             translate: f.translate,
             rotate_x: f.rotate_x,
@@ -54,12 +63,10 @@ impl TryFrom<TransformFields> for TransformSpec {
             || t.rotate_z.is_some()
             || t.scale.is_some();
         if t.matrix.is_some() && parts {
-            return Err(
-                "transform: `matrix` cannot be combined with translate/rotate/scale".into(),
-            );
+            return Err(TransformError::MatrixWithParts);
         }
         if !t.to_mat4().is_finite() {
-            return Err("transform: values must be finite".into());
+            return Err(TransformError::NotFinite);
         }
         Ok(t)
     }

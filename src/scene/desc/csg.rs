@@ -174,27 +174,59 @@ impl<'de> Deserialize<'de> for NodeSpec {
     }
 }
 
-fn positive(what: &str, name: &str, v: f32) -> Result<f32, String> {
+/// Why a CSG tree of a scene file cannot be resolved; `what` is the shape, `name` its field.
+#[derive(Debug, thiserror::Error)]
+pub enum CsgSpecError {
+    #[error("{what}: {name} must be a positive number (got {value})")]
+    NotPositive {
+        what: &'static str,
+        name: &'static str,
+        value: f32,
+    },
+    #[error("{what}: {name} must be finite")]
+    NotFinite {
+        what: &'static str,
+        name: &'static str,
+    },
+    #[error("{0}: give either `height` or both `base` and `top`/`apex`")]
+    AxialSize(&'static str),
+    #[error("CSG node: unknown material '{0}'")]
+    UnknownMaterial(String),
+    #[error("CSG node: unknown mesh '{0}'")]
+    UnknownMesh(String),
+    #[error("csg {}: needs at least one operand", format!("{:?}", .0).to_lowercase())]
+    NoOperands(Op),
+    #[error("box: min {min} must be below max {max} on every axis")]
+    BoxOrder { min: Vec3, max: Vec3 },
+    #[error("halfspace: normal must not be zero")]
+    ZeroNormal,
+    #[error("halfspace: give `offset` or `point`, not both (and finite)")]
+    HalfSpaceOffset,
+}
+
+fn positive(what: &'static str, name: &'static str, v: f32) -> Result<f32, CsgSpecError> {
     if v.is_finite() && v > 0.0 {
         Ok(v)
     } else {
-        Err(format!(
-            "{what}: {name} must be a positive number (got {v})"
-        ))
+        Err(CsgSpecError::NotPositive {
+            what,
+            name,
+            value: v,
+        })
     }
 }
 
-fn finite3(what: &str, name: &str, v: [f32; 3]) -> Result<Vec3, String> {
+fn finite3(what: &'static str, name: &'static str, v: [f32; 3]) -> Result<Vec3, CsgSpecError> {
     let v = Vec3::from_array(v);
     if v.is_finite() {
         Ok(v)
     } else {
-        Err(format!("{what}: {name} must be finite"))
+        Err(CsgSpecError::NotFinite { what, name })
     }
 }
 
 /// A y-axis shape's size and placement from `height` or from two end points.
-fn axial(what: &str, s: &AxialSpec) -> Result<(f32, f32, Mat4), String> {
+fn axial(what: &'static str, s: &AxialSpec) -> Result<(f32, f32, Mat4), CsgSpecError> {
     let r = positive(what, "radius", s.radius)?;
     match (s.height, s.base, s.top) {
         (Some(h), None, None) => Ok((r, positive(what, "height", h)?, Mat4::IDENTITY)),
@@ -205,9 +237,7 @@ fn axial(what: &str, s: &AxialSpec) -> Result<(f32, f32, Mat4), String> {
             let rot = Quat::from_rotation_arc(Vec3::Y, axis / h);
             Ok((r, h, Mat4::from_rotation_translation(rot, (b + t) * 0.5)))
         }
-        _ => Err(format!(
-            "{what}: give either `height` or both `base` and `top`/`apex`"
-        )),
+        _ => Err(CsgSpecError::AxialSize(what)),
     }
 }
 
@@ -218,7 +248,7 @@ impl NodeSpec {
         &self,
         material_index: &dyn Fn(&str) -> Option<u32>,
         default_material: u32,
-    ) -> Result<Node, String> {
+    ) -> Result<Node, CsgSpecError> {
         self.resolve_with(material_index, &|_| None, default_material)
     }
 
@@ -229,10 +259,11 @@ impl NodeSpec {
         material_index: &dyn Fn(&str) -> Option<u32>,
         mesh_solid: &dyn Fn(&str) -> Option<Arc<SolidMesh>>,
         default_material: u32,
-    ) -> Result<Node, String> {
+    ) -> Result<Node, CsgSpecError> {
         let material = match &self.material {
-            Some(name) => material_index(name)
-                .ok_or_else(|| format!("CSG node: unknown material '{name}'"))?,
+            Some(name) => {
+                material_index(name).ok_or_else(|| CsgSpecError::UnknownMaterial(name.clone()))?
+            }
             None => default_material,
         };
         let transform = self
@@ -244,9 +275,9 @@ impl NodeSpec {
             transform: transform * placed,
             material,
         };
-        let op = |op: Op, kids: &[NodeSpec]| -> Result<Node, String> {
+        let op = |op: Op, kids: &[NodeSpec]| -> Result<Node, CsgSpecError> {
             if kids.is_empty() {
-                return Err(format!("CSG {op:?}: needs at least one operand").to_lowercase());
+                return Err(CsgSpecError::NoOperands(op));
             }
             let children = kids
                 .iter()
@@ -269,9 +300,7 @@ impl NodeSpec {
             KindSpec::Box(b) => {
                 let (min, max) = (finite3("box", "min", b.min)?, finite3("box", "max", b.max)?);
                 if !min.cmplt(max).all() {
-                    return Err(format!(
-                        "box: min {min} must be below max {max} on every axis"
-                    ));
+                    return Err(CsgSpecError::BoxOrder { min, max });
                 }
                 prim(Shape::Box { min, max }, Mat4::IDENTITY)
             }
@@ -294,23 +323,19 @@ impl NodeSpec {
                 let n = finite3("halfspace", "normal", h.normal)?;
                 let len = n.length();
                 if len <= 0.0 {
-                    return Err("halfspace: normal must not be zero".into());
+                    return Err(CsgSpecError::ZeroNormal);
                 }
                 let n = n / len;
                 let offset = match (h.offset, h.point) {
                     (Some(o), None) if o.is_finite() => o / len,
                     (None, Some(p)) => n.dot(finite3("halfspace", "point", p)?),
                     (None, None) => 0.0,
-                    _ => {
-                        return Err(
-                            "halfspace: give `offset` or `point`, not both (and finite)".into()
-                        )
-                    }
+                    _ => return Err(CsgSpecError::HalfSpaceOffset),
                 };
                 prim(Shape::HalfSpace { normal: n, offset }, Mat4::IDENTITY)
             }
             KindSpec::Mesh(name) => Node::Mesh {
-                mesh: mesh_solid(name).ok_or_else(|| format!("CSG node: unknown mesh '{name}'"))?,
+                mesh: mesh_solid(name).ok_or_else(|| CsgSpecError::UnknownMesh(name.clone()))?,
                 transform,
                 material,
             },
@@ -429,7 +454,11 @@ mod tests {
             ("csg = { material = \"red\" }", "needs one of"),
             ("csg = { mesh = \"bunny\" }", "unknown mesh 'bunny'"),
         ] {
-            let err = parse(text).and_then(|s| s.resolve(&materials, 0).map(|_| ()));
+            let err = parse(text).and_then(|s| {
+                s.resolve(&materials, 0)
+                    .map(|_| ())
+                    .map_err(|e| e.to_string())
+            });
             let e = err.expect_err(text);
             assert!(e.contains(want), "{text}: {e}");
         }

@@ -1,0 +1,236 @@
+//! Unit tests of scene files: errors that name their line, assets placed and overridden, lights,
+//! moving assets, the lens and CSG objects.
+
+use super::*;
+use crate::sample::SamplerKind;
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+#[test]
+fn unknown_key_names_its_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = write(
+        dir.path(),
+        "s.toml",
+        "[render]\nspp = 4\n\n[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\nfvo = 30\n",
+    );
+    let e = load(&p).unwrap_err().to_string();
+    assert!(
+        e.contains("s.toml") && e.contains("line 7") && e.contains("fvo"),
+        "{e}"
+    );
+}
+
+#[test]
+fn wrong_type_names_its_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = write(dir.path(), "s.toml", "[render]\nwidth = \"wide\"\n");
+    let e = load(&p).unwrap_err().to_string();
+    assert!(e.contains("line 2"), "{e}");
+}
+
+#[test]
+fn unknown_material_names_its_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    write(dir.path(), "t.obj", obj);
+    let p = write(
+        dir.path(),
+        "s.toml",
+        "[[material]]\nname = \"red\"\nbase_color = [1, 0, 0]\n\n[[asset]]\npath = \"t.obj\"\nmaterial = \"blue\"\n",
+    );
+    let e = load(&p).unwrap_err().to_string();
+    assert!(e.contains("line 7") && e.contains("blue"), "{e}");
+}
+
+#[test]
+fn assets_are_placed_and_overridden() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    let p = write(
+        dir.path(),
+        "s.toml",
+        r#"
+[render]
+spp = 8
+sampler = "stratified"
+
+[[material]]
+name = "gold"
+base_color = [1, 0.8, 0.3]
+metallic = 1
+roughness = 0.2
+
+[[asset]]
+path = "t.obj"
+transform = { translate = [10, 0, 0] }
+
+[[asset]]
+path = "t.obj"
+material = "gold"
+transform = { scale = 2, rotate_z = 90 }
+
+[[light]]
+type = "point"
+position = [0, 0, 3]
+intensity = 5
+
+[camera]
+position = [0, 0, 5]
+look_at = [0, 0, 0]
+fov = 30
+"#,
+    );
+    let s = load(&p).unwrap();
+    assert_eq!(s.instances.len(), 2);
+    assert_eq!(s.settings.spp, Some(8));
+    assert_eq!(s.settings.sampler, Some(SamplerKind::Stratified));
+    let t0 = s.world_triangle(0, 0);
+    assert!((t0[1] - Vec3::new(11.0, 0.0, 0.0)).length() < 1e-5);
+    // Scaled by 2, then turned 90 degrees about z: (1,0,0) -> (0,2,0).
+    let t1 = s.world_triangle(1, 0);
+    assert!((t1[1] - Vec3::new(0.0, 2.0, 0.0)).length() < 1e-5, "{t1:?}");
+    assert_eq!(s.material_of(1).name, "gold");
+    assert_ne!(s.material_of(0).name, "gold");
+    assert_eq!(s.lights.len(), 1);
+    assert_eq!(s.cameras[0].name, "scene file");
+}
+
+#[test]
+fn area_lights_face_where_they_are_told() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = write(
+        dir.path(),
+        "s.toml",
+        r#"
+[[light]]
+type = "rect"
+center = [0, 2, 0]
+size = [2, 1]
+look_at = [0, 0, 0]
+strength = 3
+
+[[light]]
+type = "disk"
+center = [1, 1, 1]
+radius = 0.5
+normal = [0, 0, 1]
+strength = 1
+
+[[light]]
+type = "sphere"
+center = [0, 1, 0]
+radius = 0.1
+color = [1, 0.5, 0.25]
+strength = 4
+"#,
+    );
+    let s = load(&p).unwrap();
+    match s.lights[0] {
+        super::super::Light::Rect {
+            corner,
+            edge_u,
+            edge_v,
+            radiance,
+        } => {
+            let n = edge_u.cross(edge_v).normalize();
+            assert!((n - Vec3::NEG_Y).length() < 1e-6, "{n}");
+            assert!((corner + 0.5 * (edge_u + edge_v) - Vec3::new(0.0, 2.0, 0.0)).length() < 1e-6);
+            assert!((edge_u.length() * edge_v.length() - 2.0).abs() < 1e-5);
+            assert_eq!(radiance, Vec3::splat(3.0));
+        }
+        ref l => panic!("{l:?}"),
+    }
+    assert!(matches!(s.lights[1], super::super::Light::Disk { normal, .. } if normal == Vec3::Z));
+    assert!(
+        matches!(s.lights[2], super::super::Light::Sphere { radiance, .. } if radiance == Vec3::new(4.0, 2.0, 1.0))
+    );
+    let bad = write(
+        dir.path(),
+        "b.toml",
+        "[[light]]\ntype = \"disk\"\ncenter = [0, 0, 0]\nradius = 1\nstrength = 1\n",
+    );
+    let e = load(&bad).unwrap_err().to_string();
+    assert!(e.contains("line 1") && e.contains("normal"), "{e}");
+}
+
+#[test]
+fn moving_assets_lens_and_csg_objects() {
+    let dir = tempfile::tempdir().unwrap();
+    // A closed tetrahedron, to be cut by a box.
+    write(
+        dir.path(),
+        "tet.obj",
+        "o tet\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+    );
+    write(
+        dir.path(),
+        "t.obj",
+        "o tri\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    );
+    let p = write(
+        dir.path(),
+        "s.toml",
+        r#"
+[[material]]
+name = "red"
+base_color = [1, 0, 0]
+
+[[asset]]
+path = "t.obj"
+transform = { translate = [0, 0, 0] }
+transform_end = { translate = [2, 0, 0] }
+
+[[asset]]
+path = "tet.obj"
+
+[[object]]
+csg = { difference = [ { mesh = "tet" }, { box = { min = [0.5, -1, -1], max = [2, 2, 2] } } ] }
+material = "red"
+
+[[object]]
+csg = { sphere = { center = [0, 0, 0], radius = 0.5 } }
+transform = { translate = [0, 3, 0] }
+transform_end = { translate = [1, 3, 0], rotate_y = 90 }
+
+[camera]
+position = [0, 0, 5]
+look_at = [0, 0, 0]
+aperture = 0.1
+shutter = [0, 0.5]
+"#,
+    );
+    let s = load(&p).unwrap();
+    // The moving triangle: at shutter close it has moved by (2, 0, 0).
+    let m = s.instances[0].motion.as_ref().expect("the asset moves");
+    let end = m.at(1.0).transform_point3(Vec3::ZERO);
+    assert!((end - Vec3::new(2.0, 0.0, 0.0)).length() < 1e-4, "{end}");
+    // The tetrahedron became a CSG operand: its own instance left the scene.
+    assert_eq!(s.instances.len(), 1);
+    assert_eq!(s.csg.len(), 2);
+    // The moving sphere turns as it goes: more than two time steps; the cut tetrahedron stays.
+    assert!(!s.csg[0].moves() && s.csg[1].moves() && s.csg[1].time_steps() > 2);
+    let moved = crate::geometry::Ray::new(Vec3::new(1.0, 3.0, 5.0), -Vec3::Z).with_time(1.0);
+    assert!(s.csg[1].intersect(&moved).is_some());
+    assert!(s.csg[1].intersect(&moved.with_time(0.0)).is_none());
+    let lens = s.cameras[0].lens.expect("aperture gives a lens");
+    assert!((lens.radius - 0.1).abs() < 1e-6 && (lens.focus_distance - 5.0).abs() < 1e-5);
+    // A ray along x at y = z = 0.1 enters the cut tetrahedron at x = 0 and leaves at the cut.
+    let ray = crate::geometry::Ray::new(Vec3::new(-1.0, 0.1, 0.1), Vec3::X);
+    let (t, _) = s.csg[0].intersect(&ray).expect("hits the cut tetrahedron");
+    assert!((t - 1.0).abs() < 1e-4, "{t}");
+    let back = crate::geometry::Ray::new(Vec3::new(3.0, 0.1, 0.1), -Vec3::X);
+    let (t, _) = s.csg[0].intersect(&back).expect("hits the cut face");
+    assert!((t - 2.5).abs() < 1e-4, "{t}");
+    let bad = write(
+        dir.path(),
+        "b.toml",
+        "[[object]]\ncsg = { mesh = \"nothing\" }\n",
+    );
+    let e = load(&bad).unwrap_err().to_string();
+    assert!(e.contains("line 1") && e.contains("nothing"), "{e}");
+}
