@@ -5,8 +5,10 @@
 //! strata over the pixel's samples, every dimension stratified on its own and shuffled, padded as in
 //! pbrt), and `sobol` (Owen-scrambled Sobol points, Burley 2020, padded per dimension pair).
 
+pub mod mis;
 mod sobol;
 mod stratified;
+pub mod warp;
 
 use glam::Vec2;
 

@@ -612,7 +612,7 @@ fn mesh_names(node: &csg::NodeSpec) -> Vec<String> {
 
 impl LightDesc {
     fn to_light(&self, dir: &Path) -> Result<super::Light, String> {
-        use super::Light;
+        use super::{DiskLight, Light, RectLight, SphereLight};
         let rgb = |c: [f32; 3], k: f32| -> Result<Vec3, String> {
             let v = Vec3::from(c) * k;
             if v.is_finite() && v.min_element() >= 0.0 {
@@ -657,17 +657,17 @@ impl LightDesc {
                 direction: facing(Vec3::ZERO, Some(d.direction), None)?,
                 irradiance: rgb(d.color, d.irradiance)?,
             },
-            LightDesc::Sphere(s) => Light::Sphere {
+            LightDesc::Sphere(s) => Light::Sphere(SphereLight {
                 center: s.center.into(),
                 radius: positive("radius", s.radius)?,
                 radiance: rgb(s.color, s.strength)?,
-            },
-            LightDesc::Disk(d) => Light::Disk {
+            }),
+            LightDesc::Disk(d) => Light::Disk(DiskLight {
                 center: d.center.into(),
                 normal: facing(d.center.into(), d.normal, d.look_at)?,
                 radius: positive("radius", d.radius)?,
                 radiance: rgb(d.color, d.strength)?,
-            },
+            }),
             LightDesc::Rect(r) => {
                 let (corner, edge_u, edge_v) =
                     match (r.center, r.size, r.corner, r.edge_u, r.edge_v) {
@@ -702,12 +702,12 @@ impl LightDesc {
                 if edge_u.cross(edge_v).length() <= 0.0 {
                     return Err("the rectangle has no area".into());
                 }
-                Light::Rect {
+                Light::Rect(RectLight {
                     corner,
                     edge_u,
                     edge_v,
                     radiance: rgb(r.color, r.strength)?,
-                }
+                })
             }
             LightDesc::Environment(e) => {
                 let map = match &e.map {
@@ -858,12 +858,12 @@ strength = 4
         );
         let s = load(&p).unwrap();
         match s.lights[0] {
-            super::super::Light::Rect {
+            super::super::Light::Rect(super::super::RectLight {
                 corner,
                 edge_u,
                 edge_v,
                 radiance,
-            } => {
+            }) => {
                 let n = edge_u.cross(edge_v).normalize();
                 assert!((n - Vec3::NEG_Y).length() < 1e-6, "{n}");
                 assert!(
@@ -874,11 +874,9 @@ strength = 4
             }
             ref l => panic!("{l:?}"),
         }
+        assert!(matches!(s.lights[1], super::super::Light::Disk(d) if d.normal == Vec3::Z));
         assert!(
-            matches!(s.lights[1], super::super::Light::Disk { normal, .. } if normal == Vec3::Z)
-        );
-        assert!(
-            matches!(s.lights[2], super::super::Light::Sphere { radiance, .. } if radiance == Vec3::new(4.0, 2.0, 1.0))
+            matches!(s.lights[2], super::super::Light::Sphere(l) if l.radiance == Vec3::new(4.0, 2.0, 1.0))
         );
         let bad = write(
             dir.path(),
