@@ -9,7 +9,9 @@ use std::sync::Arc;
 use glam::{Mat4, Vec3, Vec4};
 use glint::accel::Backend;
 use glint::render::RenderSettings;
-use glint::scene::{Camera, EnvMap, Instance, Light, Material, Mesh, Scene};
+use glint::scene::{
+    Camera, DiskLight, EnvMap, Instance, Light, Material, Mesh, RectLight, Scene, SphereLight,
+};
 
 /// A 200 x 200 square in the y = 0 plane, of a pure Lambertian material with albedo `rho`.
 fn lambert_plane(rho: f32, lights: Vec<Light>) -> Arc<Scene> {
@@ -135,12 +137,12 @@ fn lambertian_plane_under_a_disk_light() {
     let (rho, l, h, r) = (0.5, 4.0, 1.5, 1.2);
     let scene = lambert_plane(
         rho,
-        vec![Light::Disk {
+        vec![Light::Disk(DiskLight {
             center: Vec3::new(0.0, h, 0.0),
             normal: -Vec3::Y,
             radius: r,
             radiance: Vec3::splat(l),
-        }],
+        })],
     );
     let sin2 = r * r / (r * r + h * h);
     assert_radiance(&scene, rho * l * sin2, "disk");
@@ -151,11 +153,11 @@ fn lambertian_plane_under_a_sphere_light() {
     let (rho, l, d, r) = (0.7, 3.0, 2.0, 0.5);
     let scene = lambert_plane(
         rho,
-        vec![Light::Sphere {
+        vec![Light::Sphere(SphereLight {
             center: Vec3::new(0.0, d, 0.0),
             radius: r,
             radiance: Vec3::splat(l),
-        }],
+        })],
     );
     assert_radiance(&scene, rho * l * (r / d) * (r / d), "sphere");
 }
@@ -166,12 +168,12 @@ fn lambertian_plane_under_a_rect_light() {
     let (rho, l, h, a, b) = (0.6f32, 2.0f32, 1.0f32, 0.8f32, 0.5f32);
     let scene = lambert_plane(
         rho,
-        vec![Light::Rect {
+        vec![Light::Rect(RectLight {
             corner: Vec3::new(-a, h, -b),
             edge_u: Vec3::new(2.0 * a, 0.0, 0.0),
             edge_v: Vec3::new(0.0, 0.0, 2.0 * b),
             radiance: Vec3::splat(l),
-        }],
+        })],
     );
     let (x, y) = (a / h, b / h);
     let (sx, sy) = ((1.0 + x * x).sqrt(), (1.0 + y * y).sqrt());

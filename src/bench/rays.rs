@@ -14,10 +14,10 @@ use crate::accel::{self, compare, Accel, Backend};
 use crate::geometry::mix64;
 use crate::geometry::Frame;
 use crate::geometry::Ray;
-use crate::render::bsdf::cosine_hemisphere;
 use crate::render::light::LightSet;
 use crate::render::offset::offset_ray_origin;
 use crate::render::RayCamera;
+use crate::sample::warp::cosine_hemisphere;
 use crate::scene::{defaults, generate, Scene};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]

@@ -7,6 +7,7 @@ use std::f32::consts::{FRAC_1_PI, PI};
 use glam::{Vec2, Vec3};
 
 use crate::geometry::Frame;
+use crate::sample::warp::cosine_hemisphere;
 
 /// GGX alpha below which the specular lobes are perfectly smooth (delta lobes): glTF roughness under
 /// about 0.03 renders as a true mirror or clear glass.
@@ -395,12 +396,6 @@ fn sample_vndf(o: Vec3, alpha: f32, u: Vec2) -> Vec3 {
     let p2 = (1.0 - s) * (1.0 - p1 * p1).max(0.0).sqrt() + s * r * phi.sin();
     let nh = p1 * t1 + p2 * t2 + (1.0 - p1 * p1 - p2 * p2).max(0.0).sqrt() * vh;
     Vec3::new(alpha * nh.x, alpha * nh.y, nh.z.max(1e-6)).normalize()
-}
-
-pub fn cosine_hemisphere(u: Vec2) -> Vec3 {
-    let r = u.x.sqrt();
-    let phi = 2.0 * PI * u.y;
-    Vec3::new(r * phi.cos(), r * phi.sin(), (1.0 - u.x).max(0.0).sqrt())
 }
 
 #[cfg(test)]

@@ -8,6 +8,7 @@ use super::offset::offset_ray_origin;
 use super::surface::SurfaceInteraction;
 use crate::accel::Accel;
 use crate::geometry::Ray;
+use crate::sample::mis::power_heuristic;
 use crate::sample::{Dim, Sampler};
 use crate::scene::features::Features;
 use crate::scene::Scene;
@@ -35,15 +36,6 @@ pub struct Integrator<'a> {
 pub struct PathResult {
     pub radiance: Vec4,
     pub rays: u32,
-}
-
-fn power_heuristic(a: f32, b: f32) -> f32 {
-    let (a2, b2) = (a * a, b * b);
-    if a2 + b2 == 0.0 {
-        0.0
-    } else {
-        a2 / (a2 + b2)
-    }
 }
 
 impl<'a> Integrator<'a> {

@@ -4,9 +4,13 @@
 //! Three samplers share the `Sampler` trait: independent `random` values, `stratified` (jittered
 //! strata over the pixel's samples, every dimension stratified on its own and shuffled, padded as in
 //! pbrt), and `sobol` (Owen-scrambled Sobol points, Burley 2020, padded per dimension pair).
+//! `warp` maps the unit square onto the domains the renderer samples, and `mis` weighs two sampling
+//! strategies against each other.
 
+pub mod mis;
 mod sobol;
 mod stratified;
+pub mod warp;
 
 use glam::Vec2;
 

@@ -218,7 +218,10 @@ impl Material {
 #[derive(Clone, Debug, PartialEq)]
 pub enum Light {
     /// Intensity in W/sr (glTF candela), linear RGB.
-    Point { position: Vec3, intensity: Vec3 },
+    Point {
+        position: Vec3,
+        intensity: Vec3,
+    },
     Spot {
         position: Vec3,
         /// The direction the light points to (unit).
@@ -228,28 +231,13 @@ pub enum Light {
         cos_outer: f32,
     },
     /// Irradiance (glTF lux) on a surface facing the light; `direction` is where the light travels to.
-    Directional { direction: Vec3, irradiance: Vec3 },
-    /// A sphere emitting `radiance` outwards from every point of its surface.
-    Sphere {
-        center: Vec3,
-        radius: f32,
-        radiance: Vec3,
+    Directional {
+        direction: Vec3,
+        irradiance: Vec3,
     },
-    /// A disk emitting on the side its unit `normal` faces.
-    Disk {
-        center: Vec3,
-        normal: Vec3,
-        radius: f32,
-        radiance: Vec3,
-    },
-    /// The parallelogram `corner + s * edge_u + t * edge_v` (s, t in [0, 1]), emitting towards
-    /// `edge_u x edge_v`.
-    Rect {
-        corner: Vec3,
-        edge_u: Vec3,
-        edge_v: Vec3,
-        radiance: Vec3,
-    },
+    Sphere(SphereLight),
+    Disk(DiskLight),
+    Rect(RectLight),
     /// Radiance from every direction not blocked by the scene: `radiance` times the map's value in
     /// that direction, or constant `radiance` without a map.
     Environment {
@@ -258,32 +246,55 @@ pub enum Light {
     },
 }
 
+/// A sphere emitting `radiance` outwards from every point of its surface. The analytic area lights
+/// are structs so that the renderer holds the scene's value rather than a copy of its fields.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SphereLight {
+    pub center: Vec3,
+    pub radius: f32,
+    pub radiance: Vec3,
+}
+
+/// A disk emitting on the side its unit `normal` faces.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DiskLight {
+    pub center: Vec3,
+    pub normal: Vec3,
+    pub radius: f32,
+    pub radiance: Vec3,
+}
+
+/// The parallelogram `corner + s * edge_u + t * edge_v` (s, t in [0, 1]), emitting towards
+/// `edge_u x edge_v`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RectLight {
+    pub corner: Vec3,
+    pub edge_u: Vec3,
+    pub edge_v: Vec3,
+    pub radiance: Vec3,
+}
+
 impl Light {
     /// For an analytic area light, the point light at its centre with the intensity it has along
     /// its axis (radiance times projected area), so it lights what faces it about as brightly but
     /// casts hard shadows; None for other lights.
     pub fn as_point_light(&self) -> Option<Light> {
         let (position, area, radiance) = match *self {
-            Light::Sphere {
+            Light::Sphere(SphereLight {
                 center,
                 radius,
                 radiance,
-            }
-            | Light::Disk {
+            })
+            | Light::Disk(DiskLight {
                 center,
                 radius,
                 radiance,
                 ..
-            } => (center, std::f32::consts::PI * radius * radius, radiance),
-            Light::Rect {
-                corner,
-                edge_u,
-                edge_v,
-                radiance,
-            } => (
-                corner + 0.5 * (edge_u + edge_v),
-                edge_u.cross(edge_v).length(),
-                radiance,
+            }) => (center, std::f32::consts::PI * radius * radius, radiance),
+            Light::Rect(r) => (
+                r.corner + 0.5 * (r.edge_u + r.edge_v),
+                r.edge_u.cross(r.edge_v).length(),
+                r.radiance,
             ),
             _ => return None,
         };
@@ -300,41 +311,27 @@ impl Light {
         let dir = |d: Vec3| m.transform_vector3(d).normalize_or_zero();
         let scale = m.determinant().abs().cbrt();
         match *self {
-            Light::Sphere {
-                center,
-                radius,
-                radiance,
-            } => Light::Sphere {
-                center: m.transform_point3(center),
-                radius: radius * scale,
-                radiance,
-            },
-            Light::Disk {
-                center,
-                normal,
-                radius,
-                radiance,
-            } => Light::Disk {
-                center: m.transform_point3(center),
+            Light::Sphere(s) => Light::Sphere(SphereLight {
+                center: m.transform_point3(s.center),
+                radius: s.radius * scale,
+                ..s
+            }),
+            Light::Disk(d) => Light::Disk(DiskLight {
+                center: m.transform_point3(d.center),
                 normal: m
                     .inverse()
                     .transpose()
-                    .transform_vector3(normal)
+                    .transform_vector3(d.normal)
                     .normalize_or_zero(),
-                radius: radius * scale,
-                radiance,
-            },
-            Light::Rect {
-                corner,
-                edge_u,
-                edge_v,
-                radiance,
-            } => Light::Rect {
-                corner: m.transform_point3(corner),
-                edge_u: m.transform_vector3(edge_u),
-                edge_v: m.transform_vector3(edge_v),
-                radiance,
-            },
+                radius: d.radius * scale,
+                ..d
+            }),
+            Light::Rect(r) => Light::Rect(RectLight {
+                corner: m.transform_point3(r.corner),
+                edge_u: m.transform_vector3(r.edge_u),
+                edge_v: m.transform_vector3(r.edge_v),
+                ..r
+            }),
             Light::Environment { radiance, ref map } => Light::Environment {
                 radiance,
                 map: map.as_ref().map(|e| {
@@ -706,31 +703,31 @@ mod tests {
         let r = Mat3::from_rotation_y(0.8);
         let radiance = Vec3::ONE;
         let moved = |l: Light| l.transformed(&m);
-        let Light::Sphere { center, radius, .. } = moved(Light::Sphere {
+        let Light::Sphere(SphereLight { center, radius, .. }) = moved(Light::Sphere(SphereLight {
             center: Vec3::X,
             radius: 0.5,
             radiance,
-        }) else {
+        })) else {
             unreachable!()
         };
         assert!(
             (center - m.transform_point3(Vec3::X)).length() < 1e-5 && (radius - 1.0).abs() < 1e-5
         );
-        let Light::Disk { normal, radius, .. } = moved(Light::Disk {
+        let Light::Disk(DiskLight { normal, radius, .. }) = moved(Light::Disk(DiskLight {
             center: Vec3::ZERO,
             normal: Vec3::X,
             radius: 1.0,
             radiance,
-        }) else {
+        })) else {
             unreachable!()
         };
         assert!((normal - r * Vec3::X).length() < 1e-5 && (radius - 2.0).abs() < 1e-5);
-        let Light::Rect { edge_u, edge_v, .. } = moved(Light::Rect {
+        let Light::Rect(RectLight { edge_u, edge_v, .. }) = moved(Light::Rect(RectLight {
             corner: Vec3::ZERO,
             edge_u: Vec3::X,
             edge_v: Vec3::Z,
             radiance,
-        }) else {
+        })) else {
             unreachable!()
         };
         assert!((edge_u.cross(edge_v).normalize() - r * -Vec3::Y).length() < 1e-5);

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 use serde::Deserialize;
 
-use crate::scene::{EnvMap, Light, LoadError};
+use crate::scene::{DiskLight, EnvMap, Light, LoadError, RectLight, SphereLight};
 
 /// Why a light of a scene file is refused.
 #[derive(Debug, thiserror::Error)]
@@ -186,17 +186,17 @@ impl LightDesc {
                 direction: facing(Vec3::ZERO, Some(d.direction), None)?,
                 irradiance: rgb(d.color, d.irradiance)?,
             },
-            LightDesc::Sphere(s) => Light::Sphere {
+            LightDesc::Sphere(s) => Light::Sphere(SphereLight {
                 center: s.center.into(),
                 radius: positive("radius", s.radius)?,
                 radiance: rgb(s.color, s.strength)?,
-            },
-            LightDesc::Disk(d) => Light::Disk {
+            }),
+            LightDesc::Disk(d) => Light::Disk(DiskLight {
                 center: d.center.into(),
                 normal: facing(d.center.into(), d.normal, d.look_at)?,
                 radius: positive("radius", d.radius)?,
                 radiance: rgb(d.color, d.strength)?,
-            },
+            }),
             LightDesc::Rect(r) => {
                 let (corner, edge_u, edge_v) =
                     match (r.center, r.size, r.corner, r.edge_u, r.edge_v) {
@@ -226,12 +226,12 @@ impl LightDesc {
                 if edge_u.cross(edge_v).length() <= 0.0 {
                     return Err(LightError::NoArea);
                 }
-                Light::Rect {
+                Light::Rect(RectLight {
                     corner,
                     edge_u,
                     edge_v,
                     radiance: rgb(r.color, r.strength)?,
-                }
+                })
             }
             LightDesc::Environment(e) => {
                 let map = match &e.map {

@@ -131,12 +131,12 @@ strength = 4
     );
     let s = load(&p).unwrap();
     match s.lights[0] {
-        super::super::Light::Rect {
+        super::super::Light::Rect(super::super::RectLight {
             corner,
             edge_u,
             edge_v,
             radiance,
-        } => {
+        }) => {
             let n = edge_u.cross(edge_v).normalize();
             assert!((n - Vec3::NEG_Y).length() < 1e-6, "{n}");
             assert!((corner + 0.5 * (edge_u + edge_v) - Vec3::new(0.0, 2.0, 0.0)).length() < 1e-6);
@@ -145,9 +145,9 @@ strength = 4
         }
         ref l => panic!("{l:?}"),
     }
-    assert!(matches!(s.lights[1], super::super::Light::Disk { normal, .. } if normal == Vec3::Z));
+    assert!(matches!(s.lights[1], super::super::Light::Disk(d) if d.normal == Vec3::Z));
     assert!(
-        matches!(s.lights[2], super::super::Light::Sphere { radiance, .. } if radiance == Vec3::new(4.0, 2.0, 1.0))
+        matches!(s.lights[2], super::super::Light::Sphere(l) if l.radiance == Vec3::new(4.0, 2.0, 1.0))
     );
     let bad = write(
         dir.path(),

@@ -1,0 +1,68 @@
+//! What the area-sampled lights share: the trait of the analytic area lights (found by rays, not by
+//! the accelerators) and the conversion of a uniform area sample to a solid-angle pdf.
+
+use glam::{Vec2, Vec3};
+
+use super::LightSample;
+
+/// An analytic area light (sphere, disk, rectangle): it emits and is seen but occludes nothing, so
+/// rays find it through `hit` and light sampling through `sample`, both with the same pdf.
+pub(super) trait AreaLight {
+    fn radiance(&self) -> Vec3;
+
+    /// The light's weight among the lights: the luminance of its flux.
+    fn power(&self) -> f32;
+
+    /// A point on the light seen from `p`, with the solid-angle pdf times `choice` (the probability
+    /// of having picked this light).
+    fn sample(&self, p: Vec3, u: Vec2, choice: f32) -> Option<LightSample>;
+
+    /// The distance along unit `d` from `o` to the light's emitting side, and the solid-angle pdf
+    /// (choice left out) with which `sample` picks that direction from `o`.
+    fn hit(&self, o: Vec3, d: Vec3) -> Option<(f32, f32)>;
+}
+
+/// The solid-angle pdf, times `scale`, of a point drawn uniformly over `area`, seen from squared
+/// distance `d2` at cosine `cos` to its normal. Light sampling passes its choice probability as
+/// `scale` and rays finding a light pass 1 and weigh after: the order the renders were made with.
+pub(super) fn area_pdf(scale: f32, d2: f32, cos: f32, area: f32) -> f32 {
+    scale * d2 / (cos * area)
+}
+
+/// The light sample towards point `q` (normal `n`, emitting towards `n`) drawn uniformly over `area`
+/// from `p`, with radiance `li`; `None` when `q` faces away from `p`.
+pub(super) fn area_sample(
+    p: Vec3,
+    q: Vec3,
+    n: Vec3,
+    area: f32,
+    li: Vec3,
+    choice: f32,
+) -> Option<LightSample> {
+    let to = q - p;
+    let d2 = to.length_squared();
+    let dist = d2.sqrt();
+    if dist <= 0.0 || area <= 0.0 {
+        return None;
+    }
+    let wi = to / dist;
+    let cos_l = -n.dot(wi);
+    (cos_l > 0.0).then(|| LightSample {
+        wi,
+        dist,
+        li,
+        pdf: area_pdf(choice, d2, cos_l, area),
+        is_delta: false,
+    })
+}
+
+/// Distance along unit `d` from `o` to the plane through `p` with unit normal `n`, when `o` is on
+/// the side `n` faces and `d` goes towards the plane; also `cos` between `-d` and `n`.
+pub(super) fn hit_plane(o: Vec3, d: Vec3, p: Vec3, n: Vec3) -> Option<(f32, f32)> {
+    let cos = -d.dot(n);
+    let h = (o - p).dot(n);
+    if cos <= 0.0 || h <= 0.0 {
+        return None;
+    }
+    Some((h / cos, cos))
+}

@@ -1,0 +1,35 @@
+//! Spot lights: a point light limited to a cone, with KHR_lights_punctual's smooth falloff between
+//! the inner and outer cone angles. A delta light (sampled, never hit).
+
+use std::f32::consts::PI;
+
+use glam::Vec3;
+
+use crate::render::bsdf::luminance;
+
+/// Direction, distance and arriving intensity (already divided by distance squared) from `p`; `None`
+/// outside the outer cone around `direction` (where the light points to).
+pub(super) fn sample(
+    position: Vec3,
+    direction: Vec3,
+    intensity: Vec3,
+    cos_inner: f32,
+    cos_outer: f32,
+    p: Vec3,
+) -> Option<(Vec3, f32, Vec3)> {
+    let to = position - p;
+    let d2 = to.length_squared();
+    if d2 <= 0.0 {
+        return None;
+    }
+    let wi = to / d2.sqrt();
+    // KHR_lights_punctual's recommended smooth falloff between the cone angles.
+    let scale = 1.0 / (cos_inner - cos_outer).max(1e-3);
+    let a = ((direction.dot(-wi) - cos_outer) * scale).clamp(0.0, 1.0);
+    (a > 0.0).then(|| (wi, d2.sqrt(), intensity * (a * a) / d2))
+}
+
+/// The light's weight among the lights: the luminance of the flux into its outer cone.
+pub(super) fn power(intensity: Vec3, cos_outer: f32) -> f32 {
+    2.0 * PI * (1.0 - cos_outer) * luminance(intensity)
+}

@@ -1,0 +1,94 @@
+//! Emissive triangles, two-sided, one entry per world-space triangle of each static emissive
+//! instance: sampled uniformly by area; rays find them through the accelerators, so only their pdf
+//! is asked for when a BSDF-sampled ray hits one.
+
+use std::f32::consts::PI;
+
+use glam::{Vec2, Vec3};
+
+use super::area::{area_pdf, area_sample};
+use super::LightSample;
+use crate::render::bsdf::luminance;
+use crate::render::surface::emission;
+use crate::sample::warp::uniform_triangle;
+use crate::scene::{Material, Mesh, Scene};
+
+#[derive(Clone, Debug)]
+pub(super) struct Triangle {
+    inst: u32,
+    prim: u32,
+    /// World-space vertices.
+    v: [Vec3; 3],
+    area: f32,
+}
+
+impl Triangle {
+    pub fn new(scene: &Scene, inst: u32, prim: u32) -> Self {
+        let v = scene.world_triangle(inst, prim);
+        let area = 0.5 * (v[1] - v[0]).cross(v[2] - v[0]).length();
+        Self {
+            inst,
+            prim,
+            v,
+            area,
+        }
+    }
+
+    /// The triangle's weight among the lights: the luminance of its (estimated) flux.
+    pub fn power(&self, scene: &Scene, mat: &Material, mesh: &Mesh) -> f32 {
+        PI * self.area * mean_emission(scene, mat, mesh, self.prim)
+    }
+
+    pub fn sample(&self, scene: &Scene, p: Vec3, u: Vec2, choice: f32) -> Option<LightSample> {
+        let v = &self.v;
+        let (b1, b2) = uniform_triangle(u);
+        let q = v[0] * (1.0 - b1 - b2) + v[1] * b1 + v[2] * b2;
+        let mut n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
+        // Emissive triangles are two-sided.
+        if n.dot(q - p) > 0.0 {
+            n = -n;
+        }
+        let mesh = scene.mesh_of(self.inst);
+        let mat = &scene.materials[mesh.material as usize];
+        let li = emission(scene, mat, mesh.uv_at(self.prim, b1, b2));
+        area_sample(p, q, n, self.area, li, choice)
+    }
+
+    /// The solid-angle pdf, times `choice`, with which `sample` picks point `q` (normal `nq`) from `p`.
+    pub fn pdf(&self, choice: f32, p: Vec3, q: Vec3, nq: Vec3) -> f32 {
+        let to = q - p;
+        let d2 = to.length_squared();
+        let cos_l = nq.dot(to.normalize_or_zero()).abs();
+        if cos_l <= 0.0 || self.area <= 0.0 {
+            return 0.0;
+        }
+        area_pdf(choice, d2, cos_l, self.area)
+    }
+}
+
+/// Barycentric points where a textured triangle's emission is probed: vertices, edge midpoints and
+/// centroid.
+const EMISSION_PROBES: [(f32, f32); 7] = [
+    (0.0, 0.0),
+    (1.0, 0.0),
+    (0.0, 1.0),
+    (0.5, 0.0),
+    (0.0, 0.5),
+    (0.5, 0.5),
+    (1.0 / 3.0, 1.0 / 3.0),
+];
+
+/// Estimated mean emitted luminance over a triangle. With an emission texture (glowing details on a
+/// mostly dark surface) the factor alone would give every triangle of the mesh a share of light
+/// samples; a few texture probes put them where the glow is. A triangle whose probes all miss its
+/// glow is still found by BSDF sampling (MIS then gives that hit weight 1), so this stays unbiased.
+fn mean_emission(scene: &Scene, mat: &Material, mesh: &Mesh, prim: u32) -> f32 {
+    if mat.emissive_tex.is_none() {
+        return luminance(mat.emissive);
+    }
+    let sum: f32 = EMISSION_PROBES
+        .iter()
+        .map(|&(b1, b2)| luminance(emission(scene, mat, mesh.uv_at(prim, b1, b2))))
+        .sum();
+    sum / EMISSION_PROBES.len() as f32
+}

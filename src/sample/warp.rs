@@ -1,0 +1,218 @@
+//! Warps from the unit square onto the domains the renderer samples (disk, hemisphere, cone,
+//! triangle), each beside its pdf on that domain and its inverse back to the square.
+//!
+//! The forward maps keep the arithmetic the renders were made with: images depend on their last bits.
+
+use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI};
+
+use glam::{Vec2, Vec3};
+
+/// Shirley and Chiu's concentric map from the unit square to the unit disk: area-preserving and of low
+/// distortion, so stratified samples stay stratified.
+pub fn concentric_disk(u: Vec2) -> Vec2 {
+    let a = 2.0 * u - Vec2::ONE;
+    if a == Vec2::ZERO {
+        return Vec2::ZERO;
+    }
+    let (r, theta) = if a.x.abs() > a.y.abs() {
+        (a.x, FRAC_PI_4 * (a.y / a.x))
+    } else {
+        (a.y, FRAC_PI_2 - FRAC_PI_4 * (a.x / a.y))
+    };
+    let (s, c) = theta.sin_cos();
+    Vec2::new(r * c, r * s)
+}
+
+/// The area density of `concentric_disk` on the unit disk.
+pub fn concentric_disk_pdf() -> f32 {
+    1.0 / PI
+}
+
+/// The square point `concentric_disk` maps to `p` (on the unit disk).
+pub fn concentric_disk_inverse(p: Vec2) -> Vec2 {
+    if p == Vec2::ZERO {
+        return Vec2::splat(0.5);
+    }
+    let r = p.length();
+    // In each quadrant wedge the signed radius is the dominant square coordinate and the angle from
+    // the wedge's axis (within +-pi/4) scales the other one.
+    let a = if p.x.abs() > p.y.abs() {
+        let ax = r.copysign(p.x);
+        Vec2::new(ax, ax * (p.y / p.x).atan() / FRAC_PI_4)
+    } else {
+        let ay = r.copysign(p.y);
+        Vec2::new(ay * (p.x / p.y).atan() / FRAC_PI_4, ay)
+    };
+    (a + Vec2::ONE) * 0.5
+}
+
+/// Cosine-weighted directions on the hemisphere around +z (Malley's method over the polar disk map).
+pub fn cosine_hemisphere(u: Vec2) -> Vec3 {
+    let r = u.x.sqrt();
+    let phi = 2.0 * PI * u.y;
+    Vec3::new(r * phi.cos(), r * phi.sin(), (1.0 - u.x).max(0.0).sqrt())
+}
+
+/// The solid-angle density of `cosine_hemisphere` at a direction of z component `cos_theta`.
+pub fn cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
+    cos_theta.max(0.0) / PI
+}
+
+/// The square point `cosine_hemisphere` maps to unit `w` (z >= 0).
+pub fn cosine_hemisphere_inverse(w: Vec3) -> Vec2 {
+    Vec2::new(w.x * w.x + w.y * w.y, turn_fraction(w))
+}
+
+/// Uniform directions in the cone around +z whose half-angle has `1 - cos` = `omc_max`; the cone is
+/// given by one minus its cosine because that stays exact for the small cones of far spheres. Returns
+/// the local direction and its sin(theta).
+pub fn uniform_cone(u: Vec2, omc_max: f32) -> (Vec3, f32) {
+    let omc = u.x * omc_max;
+    let cos = 1.0 - omc;
+    let sin = (omc * (2.0 - omc)).max(0.0).sqrt();
+    let (sp, cp) = (2.0 * PI * u.y).sin_cos();
+    (Vec3::new(sin * cp, sin * sp, cos), sin)
+}
+
+/// The solid angle of the cone `uniform_cone` samples.
+pub fn uniform_cone_solid_angle(omc_max: f32) -> f32 {
+    2.0 * PI * omc_max
+}
+
+/// The solid-angle density of `uniform_cone` inside its cone.
+pub fn uniform_cone_pdf(omc_max: f32) -> f32 {
+    1.0 / uniform_cone_solid_angle(omc_max)
+}
+
+/// The square point `uniform_cone` maps to unit `w` inside the cone.
+pub fn uniform_cone_inverse(w: Vec3, omc_max: f32) -> Vec2 {
+    // 1 - cos from the sine, exact near the axis: (1 - cos)(1 + cos) = sin^2.
+    let omc = (w.x * w.x + w.y * w.y) / (1.0 + w.z);
+    Vec2::new(omc / omc_max, turn_fraction(w))
+}
+
+/// Uniform barycentrics `(b1, b2)` on a triangle (the square-root parameterisation).
+pub fn uniform_triangle(u: Vec2) -> (f32, f32) {
+    let s = u.x.sqrt();
+    (s * (1.0 - u.y), s * u.y)
+}
+
+/// The density of `uniform_triangle` over barycentric coordinates (the triangle b1, b2 >= 0,
+/// b1 + b2 <= 1 has area 1/2); over a world triangle it is one over the area.
+pub fn uniform_triangle_pdf() -> f32 {
+    2.0
+}
+
+/// The square point `uniform_triangle` maps to barycentrics `(b1, b2)`.
+pub fn uniform_triangle_inverse(b1: f32, b2: f32) -> Vec2 {
+    let s = b1 + b2;
+    Vec2::new(s * s, if s > 0.0 { b2 / s } else { 0.0 })
+}
+
+/// The azimuth of `w` around +z as a fraction of a turn, in [0, 1).
+fn turn_fraction(w: Vec3) -> f32 {
+    let phi = w.y.atan2(w.x);
+    let t = if phi < 0.0 { phi + 2.0 * PI } else { phi } / (2.0 * PI);
+    if t >= 1.0 {
+        0.0
+    } else {
+        t
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI as PI64;
+
+    /// The midpoints of an n x n grid over the unit square.
+    fn grid(n: usize) -> impl Iterator<Item = Vec2> {
+        (0..n * n).map(move |k| Vec2::new((k % n) as f32 + 0.5, (k / n) as f32 + 0.5) / n as f32)
+    }
+
+    fn assert_round_trip(u: Vec2, back: Vec2, what: &str) {
+        assert!(
+            (u - back).abs().max_element() < 2e-4,
+            "{what}: {u} -> {back}"
+        );
+    }
+
+    /// The integral of `pdf(theta)` over the directions with theta below `theta_max` (midpoint rule;
+    /// the pdfs here do not depend on phi).
+    fn integrate_over_cap(theta_max: f64, pdf: impl Fn(f64) -> f64) -> f64 {
+        let n = 4096;
+        let dt = theta_max / n as f64;
+        (0..n)
+            .map(|i| {
+                let t = (i as f64 + 0.5) * dt;
+                pdf(t) * t.sin() * dt * 2.0 * PI64
+            })
+            .sum()
+    }
+
+    #[test]
+    fn concentric_disk_is_uniform_and_inverts() {
+        // Uniform on the unit disk: its pdf times the disk's area is one, and the mean squared radius
+        // of a grid of samples is 1/2.
+        assert!((concentric_disk_pdf() * PI - 1.0).abs() < 1e-6);
+        let n = 64;
+        let m = grid(n)
+            .map(|u| concentric_disk(u).length_squared())
+            .sum::<f32>()
+            / (n * n) as f32;
+        assert!((m - 0.5).abs() < 1e-3, "{m}");
+        for u in grid(37) {
+            let p = concentric_disk(u);
+            assert!(p.length() <= 1.0 + 1e-6);
+            assert_round_trip(u, concentric_disk_inverse(p), "concentric disk");
+        }
+    }
+
+    #[test]
+    fn cosine_hemisphere_pdf_integrates_to_one_and_inverts() {
+        let total =
+            integrate_over_cap(PI64 / 2.0, |t| cosine_hemisphere_pdf(t.cos() as f32) as f64);
+        assert!((total - 1.0).abs() < 1e-4, "{total}");
+        for u in grid(37) {
+            let w = cosine_hemisphere(u);
+            assert!((w.length() - 1.0).abs() < 1e-5 && w.z >= 0.0);
+            assert_round_trip(u, cosine_hemisphere_inverse(w), "cosine hemisphere");
+        }
+    }
+
+    #[test]
+    fn uniform_cone_pdf_integrates_to_one_and_inverts() {
+        for theta_max in [1e-3f64, 0.3, 1.2, PI64 / 2.0, 2.5] {
+            let omc_max = (1.0 - theta_max.cos()) as f32;
+            let total = integrate_over_cap(theta_max, |_| uniform_cone_pdf(omc_max) as f64);
+            assert!((total - 1.0).abs() < 1e-3, "theta {theta_max}: {total}");
+            for u in grid(23) {
+                let (w, sin) = uniform_cone(u, omc_max);
+                assert!((w.length() - 1.0).abs() < 1e-5, "{w}");
+                assert!((sin - w.truncate().length()).abs() < 1e-6);
+                assert!(w.z >= (1.0 - omc_max) - 1e-6);
+                assert_round_trip(u, uniform_cone_inverse(w, omc_max), "uniform cone");
+            }
+        }
+    }
+
+    #[test]
+    fn uniform_triangle_pdf_integrates_to_one_and_inverts() {
+        // Midpoint rule over the barycentric triangle, cells cut by the diagonal counted by halves.
+        let n = 256;
+        let h = 1.0 / n as f64;
+        let mut total = 0.0f64;
+        for i in 0..n {
+            for j in 0..n - i {
+                let cell = if i + j == n - 1 { 0.5 } else { 1.0 };
+                total += uniform_triangle_pdf() as f64 * cell * h * h;
+            }
+        }
+        assert!((total - 1.0).abs() < 1e-9, "{total}");
+        for u in grid(37) {
+            let (b1, b2) = uniform_triangle(u);
+            assert!(b1 >= 0.0 && b2 >= 0.0 && b1 + b2 <= 1.0 + 1e-6);
+            assert_round_trip(u, uniform_triangle_inverse(b1, b2), "uniform triangle");
+        }
+    }
+}
