@@ -5,4 +5,5 @@
 pub mod convergence;
 pub mod fastfail;
 pub mod features;
+pub mod input;
 pub mod rays;

@@ -18,7 +18,8 @@ use crate::render::bsdf::cosine_hemisphere;
 use crate::render::light::LightSet;
 use crate::render::offset::offset_ray_origin;
 use crate::render::RayCamera;
-use crate::scene::{defaults, generate, Scene};
+use super::input::Input;
+use crate::scene::{defaults, Scene};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum RayKind {
@@ -81,39 +82,6 @@ pub struct Report {
     pub input: String,
     pub triangles: usize,
     pub results: Vec<BackendResult>,
-}
-
-/// Loads a model file, or generates `icosphere:N`, `csg:showcase`, `csg:spheres` (8 x 8 CSG spheres
-/// on a ground plane) or `mesh:spheres[:N]` (the same spheres as icospheres of N subdivisions,
-/// default 4: 5120 triangles each).
-pub fn load_input(input: &str) -> Result<Scene> {
-    match input {
-        "csg:showcase" => return Ok(generate::csg_showcase()),
-        "csg:spheres" => return Ok(generate::spheres(8, None)),
-        _ => {}
-    }
-    if let Some(rest) = input.strip_prefix("mesh:spheres") {
-        let level = match rest.strip_prefix(':') {
-            None if rest.is_empty() => 4,
-            Some(n) => n
-                .parse()
-                .ok()
-                .filter(|&n| n <= 8)
-                .with_context(|| format!("'{input}': expected mesh:spheres:N with N <= 8"))?,
-            None => bail!("'{input}': expected mesh:spheres or mesh:spheres:N"),
-        };
-        return Ok(generate::spheres(8, Some(level)));
-    }
-    if let Some(n) = input.strip_prefix("icosphere:") {
-        let n: u32 = n
-            .parse()
-            .with_context(|| format!("'{input}': expected icosphere:N"))?;
-        if n > 10 {
-            bail!("'{input}': at most 10 subdivisions (21M triangles)");
-        }
-        return Ok(generate::single_mesh_scene(generate::icosphere(n, 0.05)));
-    }
-    Ok(Scene::load(Path::new(input))?)
 }
 
 /// The three ray sets of a scene, in a fixed order (generation is not timed).
@@ -206,11 +174,11 @@ fn trace(accel: &dyn Accel, rays: &[Ray], any_hit: bool) -> usize {
         .sum()
 }
 
-pub fn run(input: &str, config: &RaysConfig) -> Result<Report> {
+pub fn run(input: &Input, config: &RaysConfig) -> Result<Report> {
     if config.threads.contains(&0) {
         bail!("thread counts must be at least 1");
     }
-    let mut scene = load_input(input)?;
+    let mut scene = input.load()?;
     if let Some(shutter) = config.shutter {
         crate::scene::animation::pose(&mut scene, config.frame_time, shutter);
     }
