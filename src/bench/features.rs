@@ -137,7 +137,11 @@ const fn variant(
 
 /// Renders `scene` set up as `opts` say (`glint render`'s camera and lights) as derived and in
 /// every variant that applies, `repeat` times each.
-pub fn run(scene: Scene, opts: &JobOptions, repeat: usize) -> Result<(Features, Vec<Row>), JobError> {
+pub fn run(
+    scene: Scene,
+    opts: &JobOptions,
+    repeat: usize,
+) -> Result<(Features, Vec<Row>), JobError> {
     let base = Setup::new(scene, opts)?;
     let features = Features::of(&base.scene, &base.camera);
     let derived = variant("as derived", |_| true, |_, _| {});
@@ -157,7 +161,10 @@ pub fn run(scene: Scene, opts: &JobOptions, repeat: usize) -> Result<(Features, 
         for (k, (_, setup)) in variants.iter().enumerate() {
             let job = setup.clone().build()?;
             let out = job.render(&ProgressBar::hidden());
-            best[k] = (best[k].0.min(job.build_seconds), best[k].1.min(out.stats.seconds));
+            best[k] = (
+                best[k].0.min(job.build_seconds),
+                best[k].1.min(out.stats.seconds),
+            );
             images[k] = Some(out.image);
         }
     }

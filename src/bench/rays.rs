@@ -10,6 +10,7 @@ use anyhow::{bail, Context, Result};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
+use super::input::Input;
 use crate::accel::{self, compare, Accel, Backend};
 use crate::geometry::mix64;
 use crate::geometry::Frame;
@@ -18,7 +19,6 @@ use crate::render::bsdf::cosine_hemisphere;
 use crate::render::light::LightSet;
 use crate::render::offset::offset_ray_origin;
 use crate::render::RayCamera;
-use super::input::Input;
 use crate::scene::{defaults, Scene};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]

@@ -100,7 +100,11 @@ fn check_extension(path: &Path, ext: &str, flag: &str) -> Result<()> {
 
 pub fn run(args: TurntableArgs) -> Result<()> {
     // A sequence takes its settings from the command line only (not from a scene file's [render]).
-    let basics = job::resolve(Basics::default(), &Overrides::default(), &args.common.overrides());
+    let basics = job::resolve(
+        Basics::default(),
+        &Overrides::default(),
+        &args.common.overrides(),
+    );
     basics.validate()?;
     if !(args.elevation > -90.0 && args.elevation < 90.0) {
         bail!("--elevation must be between -90 and 90 degrees (exclusive)");
@@ -108,7 +112,11 @@ pub fn run(args: TurntableArgs) -> Result<()> {
     if !args.azimuth.is_finite() {
         bail!("--azimuth must be a finite number of degrees");
     }
-    let yfov = args.common.fov.unwrap_or(defaults::DEFAULT_FOV_DEG).to_radians();
+    let yfov = args
+        .common
+        .fov
+        .unwrap_or(defaults::DEFAULT_FOV_DEG)
+        .to_radians();
     if !(yfov > 0.0 && yfov < std::f32::consts::PI) {
         bail!("--fov must be between 0 and 180 degrees");
     }
@@ -145,7 +153,14 @@ pub fn run(args: TurntableArgs) -> Result<()> {
             );
         }
     } else {
-        render_frames(&args, &basics, names.clone(), &selected, yfov, shutter_angle)?;
+        render_frames(
+            &args,
+            &basics,
+            names.clone(),
+            &selected,
+            yfov,
+            shutter_angle,
+        )?;
     }
 
     if args.preview.is_some() || args.contact_sheet.is_some() {
@@ -192,7 +207,12 @@ fn render_frames(
     let scene = load(&args.input)?;
     let load_s = t0.elapsed().as_secs_f64();
 
-    let mut orbit = Orbit::framing(&scene.bounds(), yfov, basics.aspect(), args.elevation.to_radians());
+    let mut orbit = Orbit::framing(
+        &scene.bounds(),
+        yfov,
+        basics.aspect(),
+        args.elevation.to_radians(),
+    );
     orbit.start_azimuth = args.azimuth.to_radians();
     if let Some(d) = args.distance {
         orbit.distance = d;

@@ -10,9 +10,7 @@ use std::time::{Duration, Instant};
 
 use indicatif::ProgressBar;
 
-pub use settings::{
-    file_overrides, resolve, Basics, Overrides, MAX_EDGE, MAX_PIXELS, MAX_SPP,
-};
+pub use settings::{file_overrides, resolve, Basics, Overrides, MAX_EDGE, MAX_PIXELS, MAX_SPP};
 pub use view::{CameraChoice, CameraRef, Environment, LensOptions, View};
 
 use super::{render_full, AdaptiveMode, RenderOutput, RenderSettings};
@@ -157,7 +155,11 @@ impl Setup {
         warn: &mut dyn FnMut(&str),
     ) -> Result<Setup, JobError> {
         let t = Instant::now();
-        let environment = opts.environment.as_ref().map(Environment::light).transpose()?;
+        let environment = opts
+            .environment
+            .as_ref()
+            .map(Environment::light)
+            .transpose()?;
         let scene = Scene::load_with_animation(path, opts.time.animation)?;
         scene.warnings.iter().for_each(|w| warn(w));
         Self::assemble(scene, environment, opts, t)
@@ -166,7 +168,11 @@ impl Setup {
     /// Sets up a scene in hand. One already posed (its animation taken) stays as it is.
     pub fn new(scene: Scene, opts: &JobOptions) -> Result<Setup, JobError> {
         let t = Instant::now();
-        let environment = opts.environment.as_ref().map(Environment::light).transpose()?;
+        let environment = opts
+            .environment
+            .as_ref()
+            .map(Environment::light)
+            .transpose()?;
         Self::assemble(scene, environment, opts, t)
     }
 
@@ -282,6 +288,12 @@ impl RenderJob {
 
     /// Renders with other settings (sample counts, samplers, seeds) over the same scene and camera.
     pub fn render_with(&self, settings: &RenderSettings, progress: &ProgressBar) -> RenderOutput {
-        render_full(&self.scene, self.accel.as_ref(), &self.camera, settings, progress)
+        render_full(
+            &self.scene,
+            self.accel.as_ref(),
+            &self.camera,
+            settings,
+            progress,
+        )
     }
 }

@@ -95,12 +95,18 @@ impl View {
         let (center, _) = defaults::bounding_sphere(&bounds);
         let target = self.look_at.unwrap_or(center);
         let Some(eye) = self.eye else {
-            let c = defaults::frame_bounds(&bounds, defaults::default_view_direction(), yfov, aspect);
+            let c =
+                defaults::frame_bounds(&bounds, defaults::default_view_direction(), yfov, aspect);
             if self.look_at.is_none() {
                 return Ok(c);
             }
             let eye = c.position() - center + target;
-            return Ok(Camera::look_at(eye, target, self.up.unwrap_or(Vec3::Y), yfov));
+            return Ok(Camera::look_at(
+                eye,
+                target,
+                self.up.unwrap_or(Vec3::Y),
+                yfov,
+            ));
         };
         if (eye - target).length() == 0.0 {
             return Err(JobError::EyeIsTarget);
@@ -213,7 +219,8 @@ impl LensOptions {
                 if x as usize >= w || y as usize >= h {
                     return Err(JobError::FocusOutside { x, y, w, h });
                 }
-                let ray = RayCamera::new(camera, w, h).ray(Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
+                let ray =
+                    RayCamera::new(camera, w, h).ray(Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
                 let hit = accel
                     .intersect(&ray)
                     .ok_or(JobError::FocusOnNothing { x, y })?;

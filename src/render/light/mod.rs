@@ -383,12 +383,6 @@ impl LightSet {
         self.table.pmf(i) * d2 / (cos_l * area)
     }
 
-    /// Whether any light is found by rays rather than only by sampling (analytic area lights or an
-    /// environment).
-    pub fn has_hittable(&self) -> bool {
-        !self.hittable.is_empty() || !self.environments.is_empty()
-    }
-
     /// Radiance that `ray` receives from analytic area lights in front of `t_max` (the scene hit),
     /// each weighted against the BSDF sample of solid-angle pdf `pdf_bsdf` that made the ray (`None`
     /// for camera rays and after specular bounces: weight 1). Lights do not stop the ray.
