@@ -10,9 +10,9 @@
 use std::fmt::{self, Write as _};
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
 use indicatif::ProgressBar;
 
+use super::error::{BenchError, Result};
 use crate::film::filter::FilterKind;
 use crate::film::{self, Image};
 use crate::render::job::{Basics, JobOptions, Overrides, RenderJob, Sampling};
@@ -142,7 +142,10 @@ pub struct Report {
 }
 
 pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool) -> Result<Report> {
-    std::fs::create_dir_all(out_dir).with_context(|| format!("creating {}", out_dir.display()))?;
+    std::fs::create_dir_all(out_dir).map_err(|source| BenchError::CreateDir {
+        path: out_dir.to_path_buf(),
+        source,
+    })?;
     // Set up as `glint render` does by default: the first camera (or a framing one), the default
     // light rig when the model has no lights.
     let opts = JobOptions {
@@ -524,7 +527,7 @@ impl Report {
                 m.slope_rmse_spp
             );
         }
-        std::fs::write(runs_path, s).with_context(|| format!("writing {}", runs_path.display()))?;
+        std::fs::write(runs_path, s).map_err(BenchError::write(runs_path))?;
         let mut s = String::from(
             "scene,mode,slope_rmse_time,slope_relmse_time,slope_rmse_spp,time_ratio_rmse_vs_random,time_ratio_relmse_vs_sobol,slope_rmse_time_raw,time_ratio_rmse_vs_random_raw,time_ratio_relmse_vs_sobol_raw\n",
         );
@@ -544,8 +547,7 @@ impl Report {
                 opt(m.time_ratio_relmse_vs_sobol_raw)
             );
         }
-        std::fs::write(summary_path, s)
-            .with_context(|| format!("writing {}", summary_path.display()))
+        std::fs::write(summary_path, s).map_err(BenchError::write(summary_path))
     }
 
     /// Two log-log panels (RMSE and relMSE against seconds), one series per mode.
@@ -558,7 +560,7 @@ impl Report {
         let mut buf = vec![0u8; (w * h * 3) as usize];
         {
             let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
-            root.fill(&WHITE).map_err(|e| anyhow::anyhow!("{e}"))?;
+            root.fill(&WHITE).map_err(BenchError::plot)?;
             let panels = root.split_evenly((1, 2));
             let modes = modes(&self.runs);
             let colors = [RED, BLUE, GREEN, MAGENTA, CYAN, BLACK];
@@ -589,14 +591,14 @@ impl Report {
                         (tmin * 0.8..tmax * 1.25).log_scale(),
                         (emin * 0.8..emax * 1.25).log_scale(),
                     )
-                    .map_err(|e| anyhow::anyhow!("{e}"))?;
+                    .map_err(BenchError::plot)?;
                 chart
                     .configure_mesh()
                     .x_desc("seconds")
                     .y_desc(name)
                     .y_label_formatter(&|v| format!("{v:.0e}"))
                     .draw()
-                    .map_err(|e| anyhow::anyhow!("{e}"))?;
+                    .map_err(BenchError::plot)?;
                 for (i, m) in modes.iter().enumerate() {
                     let c = colors[i % colors.len()];
                     let mut series: Vec<(f64, f64)> = self
@@ -620,14 +622,14 @@ impl Report {
                         .unwrap_or(f64::NAN);
                     chart
                         .draw_series(LineSeries::new(series.clone(), c.stroke_width(2)))
-                        .map_err(|e| anyhow::anyhow!("{e}"))?
+                        .map_err(BenchError::plot)?
                         .label(format!("{m} ({slope:.2})"))
                         .legend(move |(x, y)| {
                             PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2))
                         });
                     chart
                         .draw_series(series.iter().map(|&p| Circle::new(p, 3, c.filled())))
-                        .map_err(|e| anyhow::anyhow!("{e}"))?;
+                        .map_err(BenchError::plot)?;
                 }
                 chart
                     .configure_series_labels()
@@ -635,9 +637,9 @@ impl Report {
                     .border_style(BLACK)
                     .position(SeriesLabelPosition::LowerLeft)
                     .draw()
-                    .map_err(|e| anyhow::anyhow!("{e}"))?;
+                    .map_err(BenchError::plot)?;
             }
-            root.present().map_err(|e| anyhow::anyhow!("{e}"))?;
+            root.present().map_err(BenchError::plot)?;
         }
         image::save_buffer_with_format(
             path,
@@ -647,7 +649,10 @@ impl Report {
             image::ColorType::Rgb8,
             image::ImageFormat::Png,
         )
-        .with_context(|| format!("writing {}", path.display()))
+        .map_err(|source| BenchError::WriteImage {
+            path: path.to_path_buf(),
+            source,
+        })
     }
 }
 

@@ -4,9 +4,9 @@
 use std::fmt::Write as _;
 use std::sync::Arc;
 
-use anyhow::{bail, Result};
 use rayon::prelude::*;
 
+use super::error::{BenchError, Result};
 use super::input::Input;
 use super::rays::{generate_rays, RayKind};
 use crate::accel::list::{Counts, ObjectList, Pretests};
@@ -63,7 +63,7 @@ pub struct Row {
 pub fn run(input: &Input, width: usize, height: usize, max_rays: usize) -> Result<Vec<Row>> {
     let scene = Arc::new(input.load()?);
     if scene.triangle_count() == 0 {
-        bail!("{input}: no triangles to trace");
+        return Err(BenchError::NoTriangles(input.to_string()));
     }
     let reference = accel::build(scene.clone(), Backend::Bvh)?;
     let sets = generate_rays(&scene, reference.as_ref(), width, height);

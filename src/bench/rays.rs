@@ -6,10 +6,10 @@ use std::path::Path;
 use std::sync::Arc;
 use std::time::Instant;
 
-use anyhow::{bail, Context, Result};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
+use super::error::{BenchError, Result};
 use super::input::Input;
 use crate::accel::{self, compare, Accel, Backend};
 use crate::geometry::mix64;
@@ -176,7 +176,7 @@ fn trace(accel: &dyn Accel, rays: &[Ray], any_hit: bool) -> usize {
 
 pub fn run(input: &Input, config: &RaysConfig) -> Result<Report> {
     if config.threads.contains(&0) {
-        bail!("thread counts must be at least 1");
+        return Err(BenchError::ZeroThreads);
     }
     let mut scene = input.load()?;
     if let Some(shutter) = config.shutter {
@@ -184,7 +184,7 @@ pub fn run(input: &Input, config: &RaysConfig) -> Result<Report> {
     }
     let scene = Arc::new(scene);
     if scene.triangle_count() == 0 && scene.csg.is_empty() {
-        bail!("{input}: no triangles or CSG objects to trace");
+        return Err(BenchError::NothingToTrace(input.to_string()));
     }
     // The same rays for every backend, generated with the Rust BVH (always available).
     let reference = accel::build(scene.clone(), Backend::Bvh)?;
@@ -216,7 +216,7 @@ pub fn run(input: &Input, config: &RaysConfig) -> Result<Report> {
                 let pool = rayon::ThreadPoolBuilder::new()
                     .num_threads(threads)
                     .build()
-                    .context("building a thread pool")?;
+                    .map_err(BenchError::ThreadPool)?;
                 let mut best = f64::INFINITY;
                 for _ in 0..config.repeat {
                     let t = Instant::now();
@@ -340,7 +340,10 @@ impl Report {
     pub fn write_json(&self, path: &Path) -> Result<()> {
         let text = serde_json::to_string_pretty(&self.to_json())?;
         let tmp = path.with_extension("json.tmp");
-        std::fs::write(&tmp, text).with_context(|| format!("writing {}", tmp.display()))?;
-        std::fs::rename(&tmp, path).with_context(|| format!("renaming into {}", path.display()))
+        std::fs::write(&tmp, text).map_err(BenchError::write(&tmp))?;
+        std::fs::rename(&tmp, path).map_err(|source| BenchError::Rename {
+            path: path.to_path_buf(),
+            source,
+        })
     }
 }
