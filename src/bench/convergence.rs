@@ -15,7 +15,7 @@ use indicatif::ProgressBar;
 use super::error::{BenchError, Result};
 use crate::film::filter::FilterKind;
 use crate::film::{self, Image};
-use crate::render::job::{Basics, JobOptions, Overrides, RenderJob, Sampling};
+use crate::render::job::{Basics, JobOptions, Overrides, RenderJob};
 use crate::render::{AdaptiveMode, RenderSettings};
 use crate::sample::SamplerKind;
 use crate::scene::Scene;
@@ -151,9 +151,9 @@ pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool)
     let opts = JobOptions {
         defaults: cfg.basics,
         flags: Overrides::all(cfg.basics),
-        sampling: Sampling {
+        sampling: RenderSettings {
             filter_radius: cfg.filter_radius,
-            ..Sampling::default()
+            ..RenderSettings::default()
         },
         ..JobOptions::default()
     };
@@ -446,6 +446,39 @@ fn opt(v: Option<f64>) -> String {
     v.map(|x| format!("{x:.3}")).unwrap_or_else(|| "-".into())
 }
 
+/// A figure of a mode's summary: a fitted slope, or a time ratio (absent when never reached).
+enum Figure {
+    Slope(f64),
+    Ratio(Option<f64>),
+}
+
+impl Figure {
+    /// Slopes with `digits` decimals, ratios with three ("-" when absent).
+    fn text(&self, digits: usize) -> String {
+        match self {
+            Figure::Slope(x) => format!("{x:.digits$}"),
+            Figure::Ratio(r) => opt(*r),
+        }
+    }
+}
+
+impl ModeSummary {
+    /// The figures in the order of the table's and the CSV's columns.
+    fn columns(&self) -> [Figure; 8] {
+        use Figure::{Ratio, Slope};
+        [
+            Slope(self.slope_rmse_time),
+            Slope(self.slope_relmse_time),
+            Slope(self.slope_rmse_spp),
+            Ratio(self.time_ratio_rmse_vs_random),
+            Ratio(self.time_ratio_relmse_vs_sobol),
+            Slope(self.slope_rmse_time_raw),
+            Ratio(self.time_ratio_rmse_vs_random_raw),
+            Ratio(self.time_ratio_relmse_vs_sobol_raw),
+        ]
+    }
+}
+
 impl Report {
     pub fn table(&self) -> String {
         let mut s = String::new();
@@ -487,19 +520,11 @@ impl Report {
             "t/t_sobol relMSE"
         );
         for m in &self.summary {
-            let _ = writeln!(
-                s,
-                "{:<18} {:>13.3} {:>15.3} {:>15.3} {:>17} {:>18} {:>13.3} {:>17} {:>18}",
-                m.mode,
-                m.slope_rmse_time,
-                m.slope_relmse_time,
-                m.slope_rmse_spp,
-                opt(m.time_ratio_rmse_vs_random),
-                opt(m.time_ratio_relmse_vs_sobol),
-                m.slope_rmse_time_raw,
-                opt(m.time_ratio_rmse_vs_random_raw),
-                opt(m.time_ratio_relmse_vs_sobol_raw)
-            );
+            let _ = write!(s, "{:<18}", m.mode);
+            for (f, w) in m.columns().iter().zip([13, 15, 15, 17, 18, 13, 17, 18]) {
+                let _ = write!(s, " {:>w$}", f.text(3));
+            }
+            s.push('\n');
         }
         s
     }
@@ -532,20 +557,8 @@ impl Report {
             "scene,mode,slope_rmse_time,slope_relmse_time,slope_rmse_spp,time_ratio_rmse_vs_random,time_ratio_relmse_vs_sobol,slope_rmse_time_raw,time_ratio_rmse_vs_random_raw,time_ratio_relmse_vs_sobol_raw\n",
         );
         for m in &self.summary {
-            let _ = writeln!(
-                s,
-                "{},{},{:.4},{:.4},{:.4},{},{},{:.4},{},{}",
-                self.scene,
-                m.mode,
-                m.slope_rmse_time,
-                m.slope_relmse_time,
-                m.slope_rmse_spp,
-                opt(m.time_ratio_rmse_vs_random),
-                opt(m.time_ratio_relmse_vs_sobol),
-                m.slope_rmse_time_raw,
-                opt(m.time_ratio_rmse_vs_random_raw),
-                opt(m.time_ratio_relmse_vs_sobol_raw)
-            );
+            let figures: Vec<String> = m.columns().iter().map(|f| f.text(4)).collect();
+            let _ = writeln!(s, "{},{},{}", self.scene, m.mode, figures.join(","));
         }
         std::fs::write(summary_path, s).map_err(BenchError::write(summary_path))
     }

@@ -11,9 +11,9 @@ use super::progress_bar;
 use crate::film::filter::FilterKind;
 use crate::film::{self, Format, Image};
 use crate::render::job::{
-    Basics, CameraChoice, CameraRef, Environment, JobOptions, Overrides, Sampling, Setup, View,
+    Basics, CameraChoice, CameraRef, Environment, JobOptions, Overrides, Setup, View,
 };
-use crate::render::AdaptiveMode;
+use crate::render::{AdaptiveMode, RenderSettings};
 use crate::sample::SamplerKind;
 
 #[derive(clap::Args, Debug)]
@@ -115,7 +115,7 @@ impl RenderArgs {
                 filter: self.filter,
                 ..self.common.overrides()
             },
-            sampling: Sampling {
+            sampling: RenderSettings {
                 filter_radius: self.filter_radius,
                 adaptive: match (self.adaptive, self.adaptive_mode) {
                     (_, Some(m)) => m,
@@ -126,6 +126,7 @@ impl RenderArgs {
                 min_spp: self.min_spp,
                 max_spp: self.max_spp,
                 time_budget: self.time_budget,
+                ..RenderSettings::default()
             },
             view: View {
                 camera: self

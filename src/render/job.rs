@@ -6,14 +6,14 @@ mod view;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use indicatif::ProgressBar;
 
 pub use settings::{file_overrides, resolve, Basics, Overrides, MAX_EDGE, MAX_PIXELS, MAX_SPP};
 pub use view::{CameraChoice, CameraRef, Environment, LensOptions, View};
 
-use super::{render_full, AdaptiveMode, RenderOutput, RenderSettings};
+use super::{render_full, RenderOutput, RenderSettings};
 use crate::accel::{self, Accel, AccelError, Backend};
 use crate::scene::features::Features;
 use crate::scene::{animation, defaults, Camera, Light, LoadError, Scene};
@@ -81,32 +81,6 @@ impl DefaultLights {
     }
 }
 
-/// How samples are taken beyond the basics: the filter's radius, adaptive sampling, a time budget.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sampling {
-    /// Filter radius in pixels (default: the filter's own).
-    pub filter_radius: Option<f32>,
-    pub adaptive: AdaptiveMode,
-    pub target_error: f32,
-    pub min_spp: u32,
-    pub max_spp: u32,
-    pub time_budget: Option<Duration>,
-}
-
-impl Default for Sampling {
-    fn default() -> Self {
-        let s = RenderSettings::default();
-        Self {
-            filter_radius: s.filter_radius,
-            adaptive: s.adaptive,
-            target_error: s.target_error,
-            min_spp: s.min_spp,
-            max_spp: s.max_spp,
-            time_budget: s.time_budget,
-        }
-    }
-}
-
 /// The moment the frame shows: which animation, how far into it, and the shutter around it.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Time {
@@ -125,7 +99,9 @@ pub struct JobOptions {
     pub defaults: Basics,
     /// What the command line gives (it beats the scene file's `[render]` settings).
     pub flags: Overrides,
-    pub sampling: Sampling,
+    /// The rest of the settings (filter radius, adaptive sampling, time budget); its basics and
+    /// shutter are replaced by those resolved here.
+    pub sampling: RenderSettings,
     pub view: View,
     pub environment: Option<Environment>,
     pub default_lights: DefaultLights,
@@ -241,7 +217,7 @@ fn light(scene: &mut Scene, camera: &Camera, environment: Option<Light>, rig: De
     }
 }
 
-fn settings(b: &Basics, s: &Sampling, t: &Time) -> RenderSettings {
+fn settings(b: &Basics, rest: &RenderSettings, t: &Time) -> RenderSettings {
     RenderSettings {
         width: b.width,
         height: b.height,
@@ -250,14 +226,9 @@ fn settings(b: &Basics, s: &Sampling, t: &Time) -> RenderSettings {
         seed: b.seed,
         sampler: b.sampler,
         filter: b.filter,
-        filter_radius: s.filter_radius,
-        adaptive: s.adaptive,
-        target_error: s.target_error,
-        min_spp: s.min_spp,
-        max_spp: s.max_spp,
-        time_budget: s.time_budget,
         shutter: t.shutter,
         frame_time: t.frame_time,
+        ..rest.clone()
     }
 }
 
