@@ -109,6 +109,17 @@ pub struct JobOptions {
     pub time: Time,
 }
 
+impl JobOptions {
+    /// The light of the environment map, when there is one (loaded before the scene, so that a bad
+    /// map fails fast).
+    fn environment_light(&self) -> Result<Option<Light>, JobError> {
+        self.environment
+            .as_ref()
+            .map(Environment::light)
+            .transpose()
+    }
+}
+
 /// A scene posed and lit, its camera and settings decided: all but the accelerator.
 #[derive(Clone, Debug)]
 pub struct Setup {
@@ -131,11 +142,7 @@ impl Setup {
         warn: &mut dyn FnMut(&str),
     ) -> Result<Setup, JobError> {
         let t = Instant::now();
-        let environment = opts
-            .environment
-            .as_ref()
-            .map(Environment::light)
-            .transpose()?;
+        let environment = opts.environment_light()?;
         let scene = Scene::load_with_animation(path, opts.time.animation)?;
         scene.warnings.iter().for_each(|w| warn(w));
         Self::assemble(scene, environment, opts, t)
@@ -144,11 +151,7 @@ impl Setup {
     /// Sets up a scene in hand. One already posed (its animation taken) stays as it is.
     pub fn new(scene: Scene, opts: &JobOptions) -> Result<Setup, JobError> {
         let t = Instant::now();
-        let environment = opts
-            .environment
-            .as_ref()
-            .map(Environment::light)
-            .transpose()?;
+        let environment = opts.environment_light()?;
         Self::assemble(scene, environment, opts, t)
     }
 
