@@ -4,12 +4,12 @@
 //! `cargo run --release --example csg_showcase -- [bvh|grid|embree ...] [--size 640x400] [--spp 64] [--depth 4]`
 
 use std::path::Path;
-use std::sync::Arc;
 
-use glint::accel::{self, Backend};
+use glam::Vec3;
+use glint::accel::Backend;
 use glint::film;
-use glint::render::{self, RenderSettings};
-use glint::scene::{defaults, generate};
+use glint::render::job::{JobOptions, Overrides, RenderJob, View};
+use glint::scene::generate;
 
 fn main() -> anyhow::Result<()> {
     let mut backends = Vec::new();
@@ -32,44 +32,31 @@ fn main() -> anyhow::Result<()> {
     if backends.is_empty() {
         backends.push(Backend::default_available());
     }
-    let mut scene = generate::csg_showcase();
-    let mut camera = defaults::default_camera(&scene, width as f32 / height as f32);
-    // A little lower and closer than the framing default, to look into the box's cavity.
-    camera = glint::scene::Camera::look_at(
-        glam::Vec3::new(2.5, 4.5, 9.5),
-        glam::Vec3::new(0.0, 0.6, 0.5),
-        glam::Vec3::Y,
-        camera_fov(&camera),
-    );
-    defaults::light_if_unlit(&mut scene, &camera.to_world);
-    let scene = Arc::new(scene);
     std::fs::create_dir_all("/tmp/csg")?;
     for backend in backends {
-        let accel = accel::build(scene.clone(), backend)?;
-        let settings = RenderSettings {
-            width,
-            height,
-            spp,
-            max_depth: depth,
+        let flags = Overrides {
+            width: Some(width),
+            height: Some(height),
+            spp: Some(spp),
+            max_depth: Some(depth),
+            backend: Some(backend),
             ..Default::default()
         };
-        let (image, stats) = render::render(
-            &scene,
-            accel.as_ref(),
-            &camera,
-            &settings,
-            &indicatif::ProgressBar::hidden(),
-        );
+        let opts = JobOptions {
+            flags,
+            // A little lower and closer than the framing default, to look into the box's cavity.
+            view: View {
+                eye: Some(Vec3::new(2.5, 4.5, 9.5)),
+                look_at: Some(Vec3::new(0.0, 0.6, 0.5)),
+                ..Default::default()
+            },
+            ..Default::default()
+        };
+        let job = RenderJob::prepare(generate::csg_showcase(), &opts)?;
+        let out = job.render(&indicatif::ProgressBar::hidden());
         let path = format!("/tmp/csg/showcase-{backend}.png");
-        film::write(&image, Path::new(&path), 0.0)?;
-        println!("{path}: {:.2} Mrays/s", stats.mrays_per_second());
+        film::write(&out.image, Path::new(&path), 0.0)?;
+        println!("{path}: {:.2} Mrays/s", out.stats.mrays_per_second());
     }
     Ok(())
-}
-
-fn camera_fov(c: &glint::scene::Camera) -> f32 {
-    match c.projection {
-        glint::scene::Projection::Perspective { yfov, .. } => yfov,
-        _ => defaults::DEFAULT_FOV_DEG.to_radians(),
-    }
 }

@@ -4,11 +4,10 @@
 //!     cargo run --release --example transmission_cost -- MODEL [SPP] [WIDTH] [HEIGHT] [REPEATS]
 
 use std::path::PathBuf;
-use std::sync::Arc;
 
-use glint::accel::{self, Backend};
-use glint::render::{self, RenderSettings};
-use glint::scene::{defaults, Scene};
+use glint::accel::Backend;
+use glint::render::job::{JobOptions, Overrides, Setup};
+use glint::scene::Scene;
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -18,15 +17,28 @@ fn main() -> anyhow::Result<()> {
     );
     let num = |i: usize, d: usize| args.get(i).and_then(|a| a.parse().ok()).unwrap_or(d);
     let (spp, width, height, repeats) = (num(1, 32) as u32, num(2, 320), num(3, 240), num(4, 2));
-    let mut scene = Scene::load(&path)?;
-    let camera = defaults::default_view(&mut scene, width as f32 / height as f32);
+    let flags = Overrides {
+        width: Some(width),
+        height: Some(height),
+        spp: Some(spp),
+        max_depth: Some(8),
+        backend: Some(Backend::Bvh),
+        ..Default::default()
+    };
+    let opts = JobOptions {
+        flags,
+        ..Default::default()
+    };
+    // Set up as `glint render` would; the opaque copy shares the camera and lights.
+    let setup = Setup::new(Scene::load(&path)?, &opts)?;
+    let scene = &setup.scene;
     let transmissive = scene
         .materials
         .iter()
         .filter(|m| m.is_transmissive())
         .count();
-    let mut opaque = scene.clone();
-    for m in &mut opaque.materials {
+    let mut opaque = setup.clone();
+    for m in &mut opaque.scene.materials {
         m.transmission = 0.0;
     }
     println!(
@@ -34,24 +46,11 @@ fn main() -> anyhow::Result<()> {
         path.display(),
         scene.materials.len()
     );
-    let settings = RenderSettings {
-        width,
-        height,
-        spp,
-        max_depth: 8,
-        ..Default::default()
-    };
-    let scenes = [("as loaded", Arc::new(scene)), ("opaque", Arc::new(opaque))];
+    let setups = [("as loaded", setup), ("opaque", opaque)];
     for round in 0..repeats {
-        for (label, s) in &scenes {
-            let accel = accel::build(s.clone(), Backend::Bvh)?;
-            let (_, stats) = render::render(
-                s,
-                accel.as_ref(),
-                &camera,
-                &settings,
-                &indicatif::ProgressBar::hidden(),
-            );
+        for (label, s) in &setups {
+            let job = s.clone().build()?;
+            let stats = job.render(&indicatif::ProgressBar::hidden()).stats;
             println!(
                 "round {round} {label:>9}: {:.2} s, {} rays, {:.2} Mrays/s",
                 stats.seconds,

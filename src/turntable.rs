@@ -8,12 +8,12 @@ use std::path::{Path, PathBuf};
 use std::str::FromStr;
 use std::time::Instant;
 
-use anyhow::{bail, Context, Result};
 use glam::{Mat4, Vec3};
 use indicatif::ProgressBar;
+use thiserror::Error;
 
 use crate::accel::Accel;
-use crate::film::{self, Format, Image};
+use crate::film::{self, FilmError, Format, Image};
 use crate::geometry::mix64;
 use crate::geometry::Aabb;
 use crate::render::{self, RenderSettings};
@@ -27,6 +27,60 @@ pub const MAX_SUBFRAMES: u32 = 8;
 pub const MAX_FRAMES: u32 = 1_000_000;
 /// Digits of the frame number in folder mode (more when the sequence needs them).
 const FOLDER_DIGITS: usize = 4;
+
+#[derive(Debug, Error)]
+pub enum TurntableError {
+    #[error(transparent)]
+    Film(#[from] FilmError),
+    #[error("{}: --format {format} disagrees with the pattern's extension", path.display())]
+    FormatDisagrees { path: PathBuf, format: &'static str },
+    #[error("{}: the frame pattern must hold one run of # (e.g. helmet_####.png)", .0.display())]
+    HashRuns(PathBuf),
+    #[error("{}: a sequence needs a frame pattern with # (e.g. frames/helmet_####.png) or a folder", .0.display())]
+    NotASequence(PathBuf),
+    #[error("--frames {0} is out of range (1..={MAX_FRAMES})")]
+    Frames(u32),
+    #[error("--shard {0}/{1}: the index must be below the count")]
+    Shard(u32, u32),
+    #[error("--frame-range {0}..{1} starts past the last frame ({2})")]
+    RangePastEnd(u32, u32, u32),
+    #[error("--frame-range {0}..{1} is empty")]
+    RangeEmpty(u32, u32),
+    #[error("the preview frame rate {0} is out of range (0 < fps <= 100)")]
+    Fps(f32),
+    #[error("no frames for the contact sheet")]
+    NoFrames,
+    #[error("creating {}", path.display())]
+    CreateDir {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("reading {}", path.display())]
+    ReadFrame {
+        path: PathBuf,
+        #[source]
+        source: image::ImageError,
+    },
+    #[error("writing {}", path.display())]
+    WritePreview {
+        path: PathBuf,
+        #[source]
+        source: Box<TurntableError>,
+    },
+    #[error("renaming into {}", path.display())]
+    Rename {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error(transparent)]
+    Io(#[from] std::io::Error),
+    #[error(transparent)]
+    Image(#[from] image::ImageError),
+}
+
+type Result<T, E = TurntableError> = std::result::Result<T, E>;
 
 /// Where frame `f` is written: a pattern whose file name holds one run of `#` (the zero-padded frame
 /// index), or `frame_####.<ext>` inside a folder.
@@ -60,20 +114,16 @@ impl FrameNames {
         if !ends_with_sep && name.contains('#') {
             let pattern_format = Format::from_path(output)?;
             if let Some(f) = format.filter(|&f| f != pattern_format) {
-                bail!(
-                    "{}: --format {} disagrees with the pattern's extension",
-                    output.display(),
-                    extension(f)
-                );
+                return Err(TurntableError::FormatDisagrees {
+                    path: output.to_path_buf(),
+                    format: extension(f),
+                });
             }
             let start = name.find('#').expect("contains #");
             let digits = name[start..].chars().take_while(|&c| c == '#').count();
             let (prefix, suffix) = (&name[..start], &name[start + digits..]);
             if suffix.contains('#') {
-                bail!(
-                    "{}: the frame pattern must hold one run of # (e.g. helmet_####.png)",
-                    output.display()
-                );
+                return Err(TurntableError::HashRuns(output.to_path_buf()));
             }
             return Ok(Self {
                 dir: output.parent().map(Path::to_path_buf).unwrap_or_default(),
@@ -84,10 +134,7 @@ impl FrameNames {
             });
         }
         if !ends_with_sep && !output.is_dir() && output.extension().is_some() {
-            bail!(
-                "{}: a sequence needs a frame pattern with # (e.g. frames/helmet_####.png) or a folder",
-                output.display()
-            );
+            return Err(TurntableError::NotASequence(output.to_path_buf()));
         }
         let format = format.unwrap_or(Format::Png);
         let needed = frames.saturating_sub(1).max(1).ilog10() as usize + 1;
@@ -180,25 +227,18 @@ pub fn select_frames(
     range: Option<Range<u32>>,
 ) -> Result<Vec<u32>> {
     if frames == 0 || frames > MAX_FRAMES {
-        bail!("--frames {frames} is out of range (1..={MAX_FRAMES})");
+        return Err(TurntableError::Frames(frames));
     }
     if let Some(s) = shard {
         if s.count == 0 || s.index >= s.count {
-            bail!(
-                "--shard {}/{}: the index must be below the count",
-                s.index,
-                s.count
-            );
+            return Err(TurntableError::Shard(s.index, s.count));
         }
     }
     let range = match range {
-        Some(r) if r.start >= frames => bail!(
-            "--frame-range {}..{} starts past the last frame ({})",
-            r.start,
-            r.end,
-            frames - 1
-        ),
-        Some(r) if r.start >= r.end => bail!("--frame-range {}..{} is empty", r.start, r.end),
+        Some(r) if r.start >= frames => {
+            return Err(TurntableError::RangePastEnd(r.start, r.end, frames - 1))
+        }
+        Some(r) if r.start >= r.end => return Err(TurntableError::RangeEmpty(r.start, r.end)),
         Some(r) => r.start..r.end.min(frames),
         None => 0..frames,
     };
@@ -446,8 +486,10 @@ impl Turntable {
         progress: &ProgressBar,
     ) -> Result<SequenceReport> {
         if !self.names.dir().as_os_str().is_empty() {
-            fs::create_dir_all(self.names.dir())
-                .with_context(|| format!("creating {}", self.names.dir().display()))?;
+            fs::create_dir_all(self.names.dir()).map_err(|source| TurntableError::CreateDir {
+                path: self.names.dir().to_path_buf(),
+                source,
+            })?;
         }
         let mut report = SequenceReport::default();
         let todo = self.pending(frames);
@@ -525,7 +567,10 @@ pub fn missing_frames(names: &FrameNames, frames: u32) -> Vec<u32> {
 pub fn read_display_frame(path: &Path, format: Format, exposure: f32) -> Result<image::RgbImage> {
     match format {
         Format::Png => Ok(image::open(path)
-            .with_context(|| format!("reading {}", path.display()))?
+            .map_err(|source| TurntableError::ReadFrame {
+                path: path.to_path_buf(),
+                source,
+            })?
             .to_rgb8()),
         Format::Exr => {
             let img = film::read_exr(path)?;
@@ -551,9 +596,15 @@ fn write_atomically(out: &Path, write: impl FnOnce(&Path) -> Result<()>) -> Resu
     let tmp = out.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
     if let Err(e) = write(&tmp) {
         let _ = fs::remove_file(&tmp);
-        return Err(e.context(format!("writing {}", out.display())));
+        return Err(TurntableError::WritePreview {
+            path: out.to_path_buf(),
+            source: Box::new(e),
+        });
     }
-    fs::rename(&tmp, out).with_context(|| format!("renaming into {}", out.display()))
+    fs::rename(&tmp, out).map_err(|source| TurntableError::Rename {
+        path: out.to_path_buf(),
+        source,
+    })
 }
 
 fn downscale(img: image::RgbImage, max_width: u32) -> image::RgbImage {
@@ -576,7 +627,7 @@ pub fn write_gif(
 ) -> Result<()> {
     use image::codecs::gif::{GifEncoder, Repeat};
     if !(fps > 0.0 && fps <= 100.0) {
-        bail!("the preview frame rate {fps} is out of range (0 < fps <= 100)");
+        return Err(TurntableError::Fps(fps));
     }
     write_atomically(out, |tmp| {
         let file = std::io::BufWriter::new(fs::File::create(tmp)?);
@@ -617,7 +668,7 @@ pub fn write_contact_sheet(
         let (x, y) = ((f % cols) * tw, (f / cols) * th);
         image::imageops::replace(sheet, &thumb, x as i64, y as i64);
     }
-    let sheet = sheet.context("no frames for the contact sheet")?;
+    let sheet = sheet.ok_or(TurntableError::NoFrames)?;
     write_atomically(out, |tmp| {
         sheet.save_with_format(tmp, image::ImageFormat::Png)?;
         Ok(())

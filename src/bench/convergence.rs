@@ -7,28 +7,23 @@
 //! `convergence.png`; the fitted slope of log error against log time per mode is the convergence
 //! rate (about -0.5 for RMSE of independent random samples).
 
-use std::fmt::Write as _;
+use std::fmt::{self, Write as _};
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
-use anyhow::{Context, Result};
 use indicatif::ProgressBar;
 
-use crate::accel::{self, Backend};
+use super::error::{BenchError, Result};
 use crate::film::filter::FilterKind;
 use crate::film::{self, Image};
-use crate::render::{self, AdaptiveMode, RenderSettings};
+use crate::render::job::{Basics, JobOptions, Overrides, RenderJob};
+use crate::render::{AdaptiveMode, RenderSettings};
 use crate::sample::SamplerKind;
-use crate::scene::{defaults, Camera, Scene};
+use crate::scene::Scene;
 
 #[derive(Clone, Debug)]
 pub struct ConvergenceConfig {
-    pub width: usize,
-    pub height: usize,
-    pub max_depth: u32,
-    pub seed: u64,
-    pub backend: Backend,
-    pub filter: FilterKind,
+    /// Image size, depth, seed, filter and backend (each run sets its own spp and sampler).
+    pub basics: Basics,
     pub filter_radius: Option<f32>,
     /// Sample counts of the uniform runs.
     pub ladder: Vec<u32>,
@@ -50,12 +45,13 @@ pub struct ConvergenceConfig {
 impl Default for ConvergenceConfig {
     fn default() -> Self {
         Self {
-            width: 160,
-            height: 120,
-            max_depth: 5,
-            seed: 1,
-            backend: Backend::default_available(),
-            filter: FilterKind::Box,
+            basics: Basics {
+                width: 160,
+                height: 120,
+                seed: 1,
+                filter: FilterKind::Box,
+                ..Basics::default()
+            },
             filter_radius: None,
             ladder: (0..=8).map(|k| 1 << k).collect(),
             ref_spp: 4096,
@@ -74,10 +70,31 @@ impl Default for ConvergenceConfig {
     }
 }
 
+/// How a run spreads its samples.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mode {
+    /// The same spp in every pixel, from this sampler.
+    Uniform(SamplerKind),
+    /// Sobol, variance-adaptive (`AdaptiveMode::Variance`).
+    AdaptiveVariance,
+    /// Sobol, corner subdivision (`AdaptiveMode::Corners`).
+    AdaptiveCorners,
+}
+
+impl fmt::Display for Mode {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Mode::Uniform(k) => f.pad(&k.to_string()),
+            Mode::AdaptiveVariance => f.pad("adaptive-variance"),
+            Mode::AdaptiveCorners => f.pad("adaptive-corners"),
+        }
+    }
+}
+
 /// One render of the ladder.
 #[derive(Clone, Debug)]
 pub struct Run {
-    pub mode: String,
+    pub mode: Mode,
     /// The ladder parameter: spp, or the adaptive target.
     pub param: f64,
     pub mean_spp: f64,
@@ -101,7 +118,7 @@ fn trimmed_mean(mut v: Vec<f64>, trim: f64) -> f64 {
 
 #[derive(Clone, Debug)]
 pub struct ModeSummary {
-    pub mode: String,
+    pub mode: Mode,
     /// Least-squares slopes in log-log space.
     pub slope_rmse_time: f64,
     pub slope_relmse_time: f64,
@@ -124,28 +141,26 @@ pub struct Report {
     pub summary: Vec<ModeSummary>,
 }
 
-/// Loads a model as `glint render` does by default: its first camera (or a framing one) and the
-/// default light rig when it has no lights.
-fn load(path: &Path, width: usize, height: usize) -> Result<(Arc<Scene>, Camera)> {
-    let mut scene = Scene::load(path)?;
-    let camera = defaults::default_view(&mut scene, width as f32 / height as f32);
-    Ok((Arc::new(scene), camera))
-}
-
 pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool) -> Result<Report> {
-    std::fs::create_dir_all(out_dir).with_context(|| format!("creating {}", out_dir.display()))?;
-    let (scene, camera) = load(input, cfg.width, cfg.height)?;
-    let accel = accel::build(scene.clone(), cfg.backend)?;
-    let hidden = ProgressBar::hidden();
-    let base = RenderSettings {
-        width: cfg.width,
-        height: cfg.height,
-        max_depth: cfg.max_depth,
-        seed: cfg.seed,
-        filter: cfg.filter,
-        filter_radius: cfg.filter_radius,
-        ..Default::default()
+    std::fs::create_dir_all(out_dir).map_err(|source| BenchError::CreateDir {
+        path: out_dir.to_path_buf(),
+        source,
+    })?;
+    // Set up as `glint render` does by default: the first camera (or a framing one), the default
+    // light rig when the model has no lights.
+    let opts = JobOptions {
+        defaults: cfg.basics,
+        flags: Overrides::all(cfg.basics),
+        sampling: RenderSettings {
+            filter_radius: cfg.filter_radius,
+            ..RenderSettings::default()
+        },
+        ..JobOptions::default()
     };
+    let job = RenderJob::prepare(Scene::load(input)?, &opts)?;
+    let base = job.settings.clone();
+    let (width, height) = (base.width, base.height);
+    let hidden = ProgressBar::hidden();
     let stem = input
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
@@ -153,14 +168,14 @@ pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool)
     let ref_name = |half: usize| {
         format!(
             "reference-{stem}-{}x{}-{}spp-{}{}-d{}-half{half}.exr",
-            cfg.width,
-            cfg.height,
+            width,
+            height,
             cfg.ref_spp,
-            cfg.filter,
+            base.filter,
             cfg.filter_radius
                 .map(|r| format!("{r}"))
                 .unwrap_or_default(),
-            cfg.max_depth
+            base.max_depth
         )
     };
     let ref_path = out_dir.join(ref_name(0));
@@ -171,7 +186,7 @@ pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool)
     for half in 0..2u64 {
         let path = out_dir.join(ref_name(half as usize));
         let img = match film::read_exr(&path) {
-            Ok(img) if img.width == cfg.width && img.height == cfg.height => {
+            Ok(img) if img.width == width && img.height == height => {
                 if verbose {
                     eprintln!("reusing reference half {}", path.display());
                 }
@@ -189,10 +204,11 @@ pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool)
                     spp: (cfg.ref_spp / 2).max(1),
                     sampler: SamplerKind::Sobol,
                     // Independent of every ladder run's samples and of the other half.
-                    seed: cfg.seed ^ (0x5EED_F2EF + half),
+                    seed: base.seed ^ (0x5EED_F2EF + half),
                     ..base.clone()
                 };
-                let (img, stats) = render::render(&scene, accel.as_ref(), &camera, &s, &hidden);
+                let out = job.render_with(&s, &hidden);
+                let (img, stats) = (out.image, out.stats);
                 film::write(&img, &path, 0.0)?;
                 if verbose {
                     eprintln!("  took {:.1} s", stats.seconds);
@@ -202,8 +218,8 @@ pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool)
         };
         halves.push(img);
     }
-    let mut reference = Image::new(cfg.width, cfg.height);
-    let mut ref_var = vec![[0.0f64; 3]; cfg.width * cfg.height];
+    let mut reference = Image::new(width, height);
+    let mut ref_var = vec![[0.0f64; 3]; width * height];
     for (i, p) in reference.pixels.iter_mut().enumerate() {
         let (a, b) = (halves[0].pixels[i], halves[1].pixels[i]);
         *p = (a + b) * 0.5;
@@ -214,8 +230,8 @@ pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool)
     }
 
     let mut runs = Vec::new();
-    let measure = |mode: String, param: f64, s: &RenderSettings| -> Run {
-        let out = render::render_full(&scene, accel.as_ref(), &camera, s, &hidden);
+    let measure = |mode: Mode, param: f64, s: &RenderSettings| -> Run {
+        let out = job.render_with(s, &hidden);
         // Per pixel: squared error less the reference's estimated variance, absolute and relative.
         let (mut abs, mut rel) = (Vec::new(), Vec::new());
         for (i, (x, r)) in out.image.pixels.iter().zip(&reference.pixels).enumerate() {
@@ -261,7 +277,7 @@ pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool)
                 sampler,
                 ..base.clone()
             };
-            runs.push(measure(sampler.to_string(), spp as f64, &s));
+            runs.push(measure(Mode::Uniform(sampler), spp as f64, &s));
         }
     }
     // By default the adaptive runs (Sobol) aim at the errors uniform Sobol (or else the first
@@ -271,10 +287,10 @@ pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool)
         Some(k) => Some(k),
         None => cfg.samplers.first(),
     }
-    .map(|k| k.to_string());
+    .map(|&k| Mode::Uniform(k));
     let derived: Vec<f32> = runs
         .iter()
-        .filter(|r| Some(&r.mode) == uniform.as_ref())
+        .filter(|r| Some(r.mode) == uniform)
         .filter(|r| r.param >= cfg.adaptive_min_spp as f64 && r.rel_mse > 0.0)
         .map(|r| r.rel_mse.sqrt() as f32)
         .collect();
@@ -292,7 +308,7 @@ pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool)
             max_spp: cfg.adaptive_max_spp,
             ..base.clone()
         };
-        runs.push(measure("adaptive-variance".into(), short(t), &s));
+        runs.push(measure(Mode::AdaptiveVariance, short(t), &s));
     }
     for &t in &cfg.corner_targets {
         let s = RenderSettings {
@@ -303,7 +319,7 @@ pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool)
             max_spp: cfg.corner_max_spp,
             ..base.clone()
         };
-        runs.push(measure("adaptive-corners".into(), short(t), &s));
+        runs.push(measure(Mode::AdaptiveCorners, short(t), &s));
     }
 
     let summary = summarise(&runs);
@@ -321,11 +337,11 @@ pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool)
     Ok(report)
 }
 
-fn modes(runs: &[Run]) -> Vec<String> {
-    let mut m: Vec<String> = Vec::new();
+fn modes(runs: &[Run]) -> Vec<Mode> {
+    let mut m: Vec<Mode> = Vec::new();
     for r in runs {
         if !m.contains(&r.mode) {
-            m.push(r.mode.clone());
+            m.push(r.mode);
         }
     }
     m
@@ -374,31 +390,35 @@ fn time_to_reach(points: &[(f64, f64)], target: f64, slope: f64) -> Option<f64> 
 }
 
 fn summarise(runs: &[Run]) -> Vec<ModeSummary> {
-    let of = |m: &str| runs.iter().filter(|r| r.mode == m).collect::<Vec<_>>();
-    let series = |m: &str, f: &dyn Fn(&Run) -> f64| -> Vec<(f64, f64)> {
+    let of = |m: Mode| runs.iter().filter(|r| r.mode == m).collect::<Vec<_>>();
+    let series = |m: Mode, f: &dyn Fn(&Run) -> f64| -> Vec<(f64, f64)> {
         of(m).iter().map(|r| (r.seconds, f(r))).collect()
     };
     // Targets: the most accurate run of random (RMSE) and of uniform sobol (relMSE).
-    let best = |m: &str, f: &dyn Fn(&Run) -> f64| {
+    let best = |m: Mode, f: &dyn Fn(&Run) -> f64| {
         of(m)
             .iter()
             .max_by(|a, b| a.param.total_cmp(&b.param))
             .map(|r| (r.seconds, f(r)))
     };
-    let random_best = best("random", &|r| r.rmse_trim);
-    let sobol_best = best("sobol", &|r| r.rel_mse_trim);
-    let random_best_raw = best("random", &|r| r.rmse);
-    let sobol_best_raw = best("sobol", &|r| r.rel_mse);
+    let (random, sobol) = (
+        Mode::Uniform(SamplerKind::Random),
+        Mode::Uniform(SamplerKind::Sobol),
+    );
+    let random_best = best(random, &|r| r.rmse_trim);
+    let sobol_best = best(sobol, &|r| r.rel_mse_trim);
+    let random_best_raw = best(random, &|r| r.rmse);
+    let sobol_best_raw = best(sobol, &|r| r.rel_mse);
     modes(runs)
         .into_iter()
         .map(|m| {
-            let rm = series(&m, &|r| r.rmse_trim);
-            let rel = series(&m, &|r| r.rel_mse_trim);
+            let rm = series(m, &|r| r.rmse_trim);
+            let rel = series(m, &|r| r.rel_mse_trim);
             let slope_rmse_time = fit_slope(&rm);
             let slope_relmse_time = fit_slope(&rel);
-            let spp: Vec<(f64, f64)> = of(&m).iter().map(|r| (r.mean_spp, r.rmse_trim)).collect();
-            let rm_raw = series(&m, &|r| r.rmse);
-            let rel_raw = series(&m, &|r| r.rel_mse);
+            let spp: Vec<(f64, f64)> = of(m).iter().map(|r| (r.mean_spp, r.rmse_trim)).collect();
+            let rm_raw = series(m, &|r| r.rmse);
+            let rel_raw = series(m, &|r| r.rel_mse);
             let slope_rmse_time_raw = fit_slope(&rm_raw);
             let slope_relmse_raw = fit_slope(&rel_raw);
             ModeSummary {
@@ -424,6 +444,39 @@ fn summarise(runs: &[Run]) -> Vec<ModeSummary> {
 
 fn opt(v: Option<f64>) -> String {
     v.map(|x| format!("{x:.3}")).unwrap_or_else(|| "-".into())
+}
+
+/// A figure of a mode's summary: a fitted slope, or a time ratio (absent when never reached).
+enum Figure {
+    Slope(f64),
+    Ratio(Option<f64>),
+}
+
+impl Figure {
+    /// Slopes with `digits` decimals, ratios with three ("-" when absent).
+    fn text(&self, digits: usize) -> String {
+        match self {
+            Figure::Slope(x) => format!("{x:.digits$}"),
+            Figure::Ratio(r) => opt(*r),
+        }
+    }
+}
+
+impl ModeSummary {
+    /// The figures in the order of the table's and the CSV's columns.
+    fn columns(&self) -> [Figure; 8] {
+        use Figure::{Ratio, Slope};
+        [
+            Slope(self.slope_rmse_time),
+            Slope(self.slope_relmse_time),
+            Slope(self.slope_rmse_spp),
+            Ratio(self.time_ratio_rmse_vs_random),
+            Ratio(self.time_ratio_relmse_vs_sobol),
+            Slope(self.slope_rmse_time_raw),
+            Ratio(self.time_ratio_rmse_vs_random_raw),
+            Ratio(self.time_ratio_relmse_vs_sobol_raw),
+        ]
+    }
 }
 
 impl Report {
@@ -467,19 +520,11 @@ impl Report {
             "t/t_sobol relMSE"
         );
         for m in &self.summary {
-            let _ = writeln!(
-                s,
-                "{:<18} {:>13.3} {:>15.3} {:>15.3} {:>17} {:>18} {:>13.3} {:>17} {:>18}",
-                m.mode,
-                m.slope_rmse_time,
-                m.slope_relmse_time,
-                m.slope_rmse_spp,
-                opt(m.time_ratio_rmse_vs_random),
-                opt(m.time_ratio_relmse_vs_sobol),
-                m.slope_rmse_time_raw,
-                opt(m.time_ratio_rmse_vs_random_raw),
-                opt(m.time_ratio_relmse_vs_sobol_raw)
-            );
+            let _ = write!(s, "{:<18}", m.mode);
+            for (f, w) in m.columns().iter().zip([13, 15, 15, 17, 18, 13, 17, 18]) {
+                let _ = write!(s, " {:>w$}", f.text(3));
+            }
+            s.push('\n');
         }
         s
     }
@@ -507,28 +552,15 @@ impl Report {
                 m.slope_rmse_spp
             );
         }
-        std::fs::write(runs_path, s).with_context(|| format!("writing {}", runs_path.display()))?;
+        std::fs::write(runs_path, s).map_err(BenchError::write(runs_path))?;
         let mut s = String::from(
             "scene,mode,slope_rmse_time,slope_relmse_time,slope_rmse_spp,time_ratio_rmse_vs_random,time_ratio_relmse_vs_sobol,slope_rmse_time_raw,time_ratio_rmse_vs_random_raw,time_ratio_relmse_vs_sobol_raw\n",
         );
         for m in &self.summary {
-            let _ = writeln!(
-                s,
-                "{},{},{:.4},{:.4},{:.4},{},{},{:.4},{},{}",
-                self.scene,
-                m.mode,
-                m.slope_rmse_time,
-                m.slope_relmse_time,
-                m.slope_rmse_spp,
-                opt(m.time_ratio_rmse_vs_random),
-                opt(m.time_ratio_relmse_vs_sobol),
-                m.slope_rmse_time_raw,
-                opt(m.time_ratio_rmse_vs_random_raw),
-                opt(m.time_ratio_relmse_vs_sobol_raw)
-            );
+            let figures: Vec<String> = m.columns().iter().map(|f| f.text(4)).collect();
+            let _ = writeln!(s, "{},{},{}", self.scene, m.mode, figures.join(","));
         }
-        std::fs::write(summary_path, s)
-            .with_context(|| format!("writing {}", summary_path.display()))
+        std::fs::write(summary_path, s).map_err(BenchError::write(summary_path))
     }
 
     /// Two log-log panels (RMSE and relMSE against seconds), one series per mode.
@@ -541,7 +573,7 @@ impl Report {
         let mut buf = vec![0u8; (w * h * 3) as usize];
         {
             let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
-            root.fill(&WHITE).map_err(|e| anyhow::anyhow!("{e}"))?;
+            root.fill(&WHITE).map_err(BenchError::plot)?;
             let panels = root.split_evenly((1, 2));
             let modes = modes(&self.runs);
             let colors = [RED, BLUE, GREEN, MAGENTA, CYAN, BLACK];
@@ -572,14 +604,14 @@ impl Report {
                         (tmin * 0.8..tmax * 1.25).log_scale(),
                         (emin * 0.8..emax * 1.25).log_scale(),
                     )
-                    .map_err(|e| anyhow::anyhow!("{e}"))?;
+                    .map_err(BenchError::plot)?;
                 chart
                     .configure_mesh()
                     .x_desc("seconds")
                     .y_desc(name)
                     .y_label_formatter(&|v| format!("{v:.0e}"))
                     .draw()
-                    .map_err(|e| anyhow::anyhow!("{e}"))?;
+                    .map_err(BenchError::plot)?;
                 for (i, m) in modes.iter().enumerate() {
                     let c = colors[i % colors.len()];
                     let mut series: Vec<(f64, f64)> = self
@@ -603,14 +635,14 @@ impl Report {
                         .unwrap_or(f64::NAN);
                     chart
                         .draw_series(LineSeries::new(series.clone(), c.stroke_width(2)))
-                        .map_err(|e| anyhow::anyhow!("{e}"))?
+                        .map_err(BenchError::plot)?
                         .label(format!("{m} ({slope:.2})"))
                         .legend(move |(x, y)| {
                             PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2))
                         });
                     chart
                         .draw_series(series.iter().map(|&p| Circle::new(p, 3, c.filled())))
-                        .map_err(|e| anyhow::anyhow!("{e}"))?;
+                        .map_err(BenchError::plot)?;
                 }
                 chart
                     .configure_series_labels()
@@ -618,9 +650,9 @@ impl Report {
                     .border_style(BLACK)
                     .position(SeriesLabelPosition::LowerLeft)
                     .draw()
-                    .map_err(|e| anyhow::anyhow!("{e}"))?;
+                    .map_err(BenchError::plot)?;
             }
-            root.present().map_err(|e| anyhow::anyhow!("{e}"))?;
+            root.present().map_err(BenchError::plot)?;
         }
         image::save_buffer_with_format(
             path,
@@ -630,13 +662,11 @@ impl Report {
             image::ColorType::Rgb8,
             image::ImageFormat::Png,
         )
-        .with_context(|| format!("writing {}", path.display()))
+        .map_err(|source| BenchError::WriteImage {
+            path: path.to_path_buf(),
+            source,
+        })
     }
-}
-
-/// Reads a reference image back (for callers that want to compare their own renders).
-pub fn read_reference(path: &Path) -> Result<Image> {
-    film::read_exr(path)
 }
 
 /// An f32 parameter as the f64 it was written as (0.4, not 0.4000000059604645).

@@ -4,10 +4,11 @@
 use std::fmt::Write as _;
 use std::sync::Arc;
 
-use anyhow::{bail, Result};
 use rayon::prelude::*;
 
-use super::rays::{generate_rays, load_input, RayKind};
+use super::error::{BenchError, Result};
+use super::input::Input;
+use super::rays::{generate_rays, RayKind};
 use crate::accel::list::{Counts, ObjectList, Pretests};
 use crate::accel::{self, Accel, Backend};
 use crate::geometry::Ray;
@@ -59,10 +60,10 @@ pub struct Row {
 
 /// Counts the tests for every ray kind and pretest combination on at most `max_rays` rays per kind
 /// (every `k`-th ray of the set, so the sample spans the image).
-pub fn run(input: &str, width: usize, height: usize, max_rays: usize) -> Result<Vec<Row>> {
-    let scene = Arc::new(load_input(input)?);
+pub fn run(input: &Input, width: usize, height: usize, max_rays: usize) -> Result<Vec<Row>> {
+    let scene = Arc::new(input.load()?);
     if scene.triangle_count() == 0 {
-        bail!("{input}: no triangles to trace");
+        return Err(BenchError::NoTriangles(input.to_string()));
     }
     let reference = accel::build(scene.clone(), Backend::Bvh)?;
     let sets = generate_rays(&scene, reference.as_ref(), width, height);
@@ -98,7 +99,7 @@ pub fn run(input: &str, width: usize, height: usize, max_rays: usize) -> Result<
     Ok(rows)
 }
 
-pub fn table(input: &str, objects: usize, rows: &[Row]) -> String {
+pub fn table(input: &Input, objects: usize, rows: &[Row]) -> String {
     let mut s = format!("{input}: {objects} objects\n");
     let _ = writeln!(
         s,

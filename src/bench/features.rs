@@ -2,17 +2,13 @@
 //! derived, with each effect it uses taken away, and with the machinery it skips forced on (same image).
 
 use std::fmt::Write as _;
-use std::sync::Arc;
-use std::time::Instant;
 
-use anyhow::Result;
 use indicatif::ProgressBar;
 
-use super::rays::load_input;
-use crate::accel::{self, Backend};
+use super::input::Input;
 use crate::film::Image;
 use crate::geometry::Motion;
-use crate::render::{self, RenderSettings};
+use crate::render::job::{JobError, JobOptions, Setup};
 use crate::scene::features::Features;
 use crate::scene::{defaults, Camera, Lens, Material, Scene};
 
@@ -106,93 +102,69 @@ fn without_glossy(scene: &mut Scene, _: &mut Camera) {
     }
 }
 
+/// What each variant changes, and when it applies.
 const VARIANTS: [Variant; 9] = [
-    Variant {
-        name: "+ motion machinery",
-        applies: |f| !f.motion,
-        change: force_motion,
-    },
-    Variant {
-        name: "+ lens sampling",
-        applies: |f| !f.lens,
-        change: force_lens,
-    },
-    Variant {
-        name: "+ thin-wall shadows",
-        applies: |f| !f.thin_walls,
-        change: force_thin,
-    },
-    Variant {
-        name: "all three forced",
-        applies: |f| !f.motion && !f.lens && !f.thin_walls,
-        change: |s, c| {
+    variant("+ motion machinery", |f| !f.motion, force_motion),
+    variant("+ lens sampling", |f| !f.lens, force_lens),
+    variant("+ thin-wall shadows", |f| !f.thin_walls, force_thin),
+    variant(
+        "all three forced",
+        |f| !f.motion && !f.lens && !f.thin_walls,
+        |s, c| {
             force_motion(s, c);
             force_lens(s, c);
             force_thin(s, c);
         },
-    },
-    Variant {
-        name: "- motion blur",
-        applies: |f| f.motion,
-        change: without_motion,
-    },
-    Variant {
-        name: "- depth of field",
-        applies: |f| f.lens,
-        change: without_lens,
-    },
-    Variant {
-        name: "- transmission",
-        applies: |f| f.transmission,
-        change: without_transmission,
-    },
-    Variant {
-        name: "- soft shadows",
-        applies: |f| f.area_lights,
-        change: without_area_lights,
-    },
-    Variant {
-        name: "- glossy (rough 1)",
-        applies: |_| true,
-        change: without_glossy,
-    },
+    ),
+    variant("- motion blur", |f| f.motion, without_motion),
+    variant("- depth of field", |f| f.lens, without_lens),
+    variant("- transmission", |f| f.transmission, without_transmission),
+    variant("- soft shadows", |f| f.area_lights, without_area_lights),
+    variant("- glossy (rough 1)", |_| true, without_glossy),
 ];
 
+const fn variant(
+    name: &'static str,
+    applies: fn(&Features) -> bool,
+    change: fn(&mut Scene, &mut Camera),
+) -> Variant {
+    Variant {
+        name,
+        applies,
+        change,
+    }
+}
+
+/// Renders `scene` set up as `opts` say (`glint render`'s camera and lights) as derived and in
+/// every variant that applies, `repeat` times each.
 pub fn run(
-    input: &str,
-    backend: Backend,
-    settings: &RenderSettings,
+    scene: Scene,
+    opts: &JobOptions,
     repeat: usize,
-) -> Result<(Features, Vec<Row>)> {
-    let mut base = load_input(input)?;
-    let aspect = settings.width as f32 / settings.height as f32;
-    let camera = defaults::default_view(&mut base, aspect);
-    let features = Features::of(&base, &camera);
-    let derived = Variant {
-        name: "as derived",
-        applies: |_| true,
-        change: |_, _| {},
-    };
-    let variants: Vec<(&Variant, Arc<Scene>, Camera)> = std::iter::once(&derived)
+) -> Result<(Features, Vec<Row>), JobError> {
+    let base = Setup::new(scene, opts)?;
+    let features = Features::of(&base.scene, &base.camera);
+    let derived = variant("as derived", |_| true, |_, _| {});
+    let variants: Vec<(&Variant, Setup)> = std::iter::once(&derived)
         .chain(VARIANTS.iter())
         .filter(|v| (v.applies)(&features))
         .map(|v| {
-            let (mut scene, mut cam) = (base.clone(), camera.clone());
-            (v.change)(&mut scene, &mut cam);
-            (v, Arc::new(scene), cam)
+            let mut setup = base.clone();
+            (v.change)(&mut setup.scene, &mut setup.camera);
+            (v, setup)
         })
         .collect();
     // Repeats go round the variants, so a slow spell of the machine falls on all of them alike.
     let mut best = vec![(f64::INFINITY, f64::INFINITY); variants.len()];
     let mut images: Vec<Option<Image>> = vec![None; variants.len()];
     for _ in 0..repeat.max(1) {
-        for (k, (_, scene, cam)) in variants.iter().enumerate() {
-            let t = Instant::now();
-            let accel = accel::build(scene.clone(), backend)?;
-            let build = t.elapsed().as_secs_f64();
-            let out =
-                render::render_full(scene, accel.as_ref(), cam, settings, &ProgressBar::hidden());
-            best[k] = (best[k].0.min(build), best[k].1.min(out.stats.seconds));
+        for (k, (_, setup)) in variants.iter().enumerate() {
+            let job = setup.clone().build()?;
+            let out = job.render(&ProgressBar::hidden());
+            best[k] = (
+                best[k].0.min(job.build_seconds),
+                best[k].1.min(out.stats.seconds),
+            );
             images[k] = Some(out.image);
         }
     }
@@ -202,19 +174,17 @@ pub fn run(
         .iter()
         .zip(&best)
         .zip(&images)
-        .map(
-            |(((v, _, _), &(build_seconds, render_seconds)), image)| Row {
-                variant: v.name,
-                build_seconds,
-                render_seconds,
-                image_difference: image.mean_abs_diff(reference) / reference.mean_rgb().max(1e-12),
-            },
-        )
+        .map(|(((v, _), &(build_seconds, render_seconds)), image)| Row {
+            variant: v.name,
+            build_seconds,
+            render_seconds,
+            image_difference: image.mean_abs_diff(reference) / reference.mean_rgb().max(1e-12),
+        })
         .collect();
     Ok((features, rows))
 }
 
-pub fn table(input: &str, features: &Features, rows: &[Row]) -> String {
+pub fn table(input: &Input, features: &Features, rows: &[Row]) -> String {
     let mut s = format!("{input}: {}\n", features.describe());
     let _ = writeln!(
         s,

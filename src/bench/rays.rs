@@ -6,10 +6,11 @@ use std::path::Path;
 use std::sync::Arc;
 use std::time::Instant;
 
-use anyhow::{bail, Context, Result};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
+use super::error::{BenchError, Result};
+use super::input::Input;
 use crate::accel::{self, compare, Accel, Backend};
 use crate::geometry::mix64;
 use crate::geometry::Frame;
@@ -18,7 +19,7 @@ use crate::render::light::LightSet;
 use crate::render::offset::offset_ray_origin;
 use crate::render::RayCamera;
 use crate::sample::warp::cosine_hemisphere;
-use crate::scene::{defaults, generate, Scene};
+use crate::scene::{defaults, Scene};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum RayKind {
@@ -81,39 +82,6 @@ pub struct Report {
     pub input: String,
     pub triangles: usize,
     pub results: Vec<BackendResult>,
-}
-
-/// Loads a model file, or generates `icosphere:N`, `csg:showcase`, `csg:spheres` (8 x 8 CSG spheres
-/// on a ground plane) or `mesh:spheres[:N]` (the same spheres as icospheres of N subdivisions,
-/// default 4: 5120 triangles each).
-pub fn load_input(input: &str) -> Result<Scene> {
-    match input {
-        "csg:showcase" => return Ok(generate::csg_showcase()),
-        "csg:spheres" => return Ok(generate::spheres(8, None)),
-        _ => {}
-    }
-    if let Some(rest) = input.strip_prefix("mesh:spheres") {
-        let level = match rest.strip_prefix(':') {
-            None if rest.is_empty() => 4,
-            Some(n) => n
-                .parse()
-                .ok()
-                .filter(|&n| n <= 8)
-                .with_context(|| format!("'{input}': expected mesh:spheres:N with N <= 8"))?,
-            None => bail!("'{input}': expected mesh:spheres or mesh:spheres:N"),
-        };
-        return Ok(generate::spheres(8, Some(level)));
-    }
-    if let Some(n) = input.strip_prefix("icosphere:") {
-        let n: u32 = n
-            .parse()
-            .with_context(|| format!("'{input}': expected icosphere:N"))?;
-        if n > 10 {
-            bail!("'{input}': at most 10 subdivisions (21M triangles)");
-        }
-        return Ok(generate::single_mesh_scene(generate::icosphere(n, 0.05)));
-    }
-    Ok(Scene::load(Path::new(input))?)
 }
 
 /// The three ray sets of a scene, in a fixed order (generation is not timed).
@@ -206,17 +174,17 @@ fn trace(accel: &dyn Accel, rays: &[Ray], any_hit: bool) -> usize {
         .sum()
 }
 
-pub fn run(input: &str, config: &RaysConfig) -> Result<Report> {
+pub fn run(input: &Input, config: &RaysConfig) -> Result<Report> {
     if config.threads.contains(&0) {
-        bail!("thread counts must be at least 1");
+        return Err(BenchError::ZeroThreads);
     }
-    let mut scene = load_input(input)?;
+    let mut scene = input.load()?;
     if let Some(shutter) = config.shutter {
         crate::scene::animation::pose(&mut scene, config.frame_time, shutter);
     }
     let scene = Arc::new(scene);
     if scene.triangle_count() == 0 && scene.csg.is_empty() {
-        bail!("{input}: no triangles or CSG objects to trace");
+        return Err(BenchError::NothingToTrace(input.to_string()));
     }
     // The same rays for every backend, generated with the Rust BVH (always available).
     let reference = accel::build(scene.clone(), Backend::Bvh)?;
@@ -248,7 +216,7 @@ pub fn run(input: &str, config: &RaysConfig) -> Result<Report> {
                 let pool = rayon::ThreadPoolBuilder::new()
                     .num_threads(threads)
                     .build()
-                    .context("building a thread pool")?;
+                    .map_err(BenchError::ThreadPool)?;
                 let mut best = f64::INFINITY;
                 for _ in 0..config.repeat {
                     let t = Instant::now();
@@ -372,7 +340,10 @@ impl Report {
     pub fn write_json(&self, path: &Path) -> Result<()> {
         let text = serde_json::to_string_pretty(&self.to_json())?;
         let tmp = path.with_extension("json.tmp");
-        std::fs::write(&tmp, text).with_context(|| format!("writing {}", tmp.display()))?;
-        std::fs::rename(&tmp, path).with_context(|| format!("renaming into {}", path.display()))
+        std::fs::write(&tmp, text).map_err(BenchError::write(&tmp))?;
+        std::fs::rename(&tmp, path).map_err(|source| BenchError::Rename {
+            path: path.to_path_buf(),
+            source,
+        })
     }
 }

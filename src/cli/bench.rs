@@ -7,7 +7,20 @@ use anyhow::Result;
 use clap::Subcommand;
 
 use crate::accel::Backend;
+use crate::bench::input::Input;
 use crate::bench::rays::{self, RayKind, RaysConfig};
+use crate::film::filter::FilterKind;
+use crate::render::job::{Basics, JobOptions, Overrides};
+use crate::sample::SamplerKind;
+
+/// An image size with a command's own defaults.
+#[derive(clap::Args, Debug)]
+pub struct Size<const W: usize, const H: usize> {
+    #[arg(long, default_value_t = W)]
+    pub width: usize,
+    #[arg(long, default_value_t = H)]
+    pub height: usize,
+}
 
 #[derive(Subcommand, Debug)]
 pub enum BenchCommand {
@@ -28,14 +41,12 @@ pub enum BenchCommand {
 #[derive(clap::Args, Debug)]
 pub struct FeaturesArgs {
     /// A .gltf, .glb, .obj or .toml file, or `icosphere:N`.
-    pub input: String,
-    #[arg(long, default_value_t = 320)]
-    pub width: usize,
-    #[arg(long, default_value_t = 240)]
-    pub height: usize,
+    pub input: Input,
+    #[command(flatten)]
+    pub size: Size<320, 240>,
     #[arg(long, default_value_t = 16)]
     pub spp: u32,
-    #[arg(long, default_value_t = Backend::default_available())]
+    #[arg(long, value_enum, default_value_t = Backend::default_available())]
     pub backend: Backend,
     /// Timed repetitions per variant (the best is reported).
     #[arg(long, default_value_t = 3)]
@@ -45,14 +56,12 @@ pub struct FeaturesArgs {
 #[derive(clap::Args, Debug)]
 pub struct FastFailureArgs {
     /// A .gltf, .glb, .obj or .toml file, or `icosphere:N`.
-    pub input: String,
+    pub input: Input,
     /// Rays per kind (an even sample of the full set; brute force is slow).
     #[arg(long, default_value_t = 20_000)]
     pub rays: usize,
-    #[arg(long, default_value_t = 320)]
-    pub width: usize,
-    #[arg(long, default_value_t = 240)]
-    pub height: usize,
+    #[command(flatten)]
+    pub size: Size<320, 240>,
 }
 
 #[derive(clap::Args, Debug)]
@@ -62,10 +71,8 @@ pub struct ConvergenceArgs {
     /// Output folder: reference EXR (reused when present), convergence.csv, summary.csv, convergence.png.
     #[arg(long)]
     pub out: PathBuf,
-    #[arg(long, default_value_t = 160)]
-    pub width: usize,
-    #[arg(long, default_value_t = 120)]
-    pub height: usize,
+    #[command(flatten)]
+    pub size: Size<160, 120>,
     /// Largest sample count of the uniform ladder (1, 2, 4, ... up to this).
     #[arg(long, default_value_t = 256)]
     pub max_spp: u32,
@@ -74,13 +81,13 @@ pub struct ConvergenceArgs {
     pub ref_spp: u32,
     #[arg(long, default_value_t = 5)]
     pub max_depth: u32,
-    #[arg(long, value_enum, default_value_t = crate::film::filter::FilterKind::Box)]
-    pub filter: crate::film::filter::FilterKind,
+    #[arg(long, value_enum, default_value_t = FilterKind::Box)]
+    pub filter: FilterKind,
     #[arg(long)]
     pub filter_radius: Option<f32>,
     /// Samplers of the uniform ladders, comma separated.
-    #[arg(long, value_delimiter = ',', default_values_t = [crate::sample::SamplerKind::Random, crate::sample::SamplerKind::Stratified, crate::sample::SamplerKind::Sobol])]
-    pub samplers: Vec<crate::sample::SamplerKind>,
+    #[arg(long, value_enum, value_delimiter = ',', default_values_t = [SamplerKind::Random, SamplerKind::Stratified, SamplerKind::Sobol])]
+    pub samplers: Vec<SamplerKind>,
     /// Targets of the variance-adaptive runs (the image's relative RMS error), comma separated
     /// (default: the errors uniform sobol reached from --adaptive-min-spp spp up).
     #[arg(long, value_delimiter = ',')]
@@ -94,7 +101,7 @@ pub struct ConvergenceArgs {
     /// Contrast thresholds of the corner-subdivision runs, comma separated.
     #[arg(long, value_delimiter = ',', default_values_t = [0.8f32, 0.4, 0.2, 0.1, 0.05])]
     pub corner_targets: Vec<f32>,
-    #[arg(long, default_value_t = Backend::default_available())]
+    #[arg(long, value_enum, default_value_t = Backend::default_available())]
     pub backend: Backend,
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -108,9 +115,9 @@ pub struct RaysArgs {
     /// A .gltf, .glb or .obj file, or `icosphere:N` for a generated displaced icosphere of 20*4^N
     /// triangles (N = 8 gives 1.3M), or `csg:showcase`, `csg:spheres` (64 CSG spheres on a ground
     /// plane) or `mesh:spheres[:N]` (the same spheres as icospheres of N subdivisions, default 4).
-    pub input: String,
+    pub input: Input,
     /// Backends, comma separated (default: all built in).
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_enum, value_delimiter = ',')]
     pub backend: Vec<Backend>,
     /// Ray kinds, comma separated: primary, shadow, diffuse.
     #[arg(long, value_delimiter = ',', default_values_t = RayKind::ALL)]
@@ -119,10 +126,8 @@ pub struct RaysArgs {
     #[arg(long, value_delimiter = ',', default_values_t = [1usize, 2])]
     pub threads: Vec<usize>,
     /// Primary rays are one per pixel of a WIDTHxHEIGHT image.
-    #[arg(long, default_value_t = 1024)]
-    pub width: usize,
-    #[arg(long, default_value_t = 768)]
-    pub height: usize,
+    #[command(flatten)]
+    pub size: Size<1024, 768>,
     /// Timed repetitions per measurement (the best is reported).
     #[arg(long, default_value_t = 3)]
     pub repeat: usize,
@@ -131,7 +136,7 @@ pub struct RaysArgs {
     pub json: Option<PathBuf>,
     /// Shutter OPEN,CLOSE in seconds: measure the file's animation with motion blur (rays at random
     /// times in the shutter).
-    #[arg(long, value_parser = super::parse_shutter, allow_hyphen_values = true)]
+    #[arg(long, value_parser = super::args::parse_shutter, allow_hyphen_values = true)]
     pub shutter: Option<[f32; 2]>,
     /// Seconds into the animation (with --shutter).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
@@ -147,12 +152,15 @@ pub fn run(cmd: BenchCommand) -> Result<()> {
                 ladder.push(ladder.last().unwrap() * 2);
             }
             let config = ConvergenceConfig {
-                width: a.width.max(1),
-                height: a.height.max(1),
-                max_depth: a.max_depth,
-                seed: a.seed,
-                backend: a.backend,
-                filter: a.filter,
+                basics: Basics {
+                    width: a.size.width.max(1),
+                    height: a.size.height.max(1),
+                    max_depth: a.max_depth,
+                    seed: a.seed,
+                    backend: a.backend,
+                    filter: a.filter,
+                    ..ConvergenceConfig::default().basics
+                },
                 filter_radius: a.filter_radius,
                 ladder,
                 ref_spp: a.ref_spp.max(1),
@@ -169,19 +177,26 @@ pub fn run(cmd: BenchCommand) -> Result<()> {
         }
         BenchCommand::FastFailure(a) => {
             use crate::bench::fastfail;
-            let rows = fastfail::run(&a.input, a.width.max(1), a.height.max(1), a.rays)?;
-            let objects = rays::load_input(&a.input)?.instances.len();
+            let (w, h) = (a.size.width.max(1), a.size.height.max(1));
+            let rows = fastfail::run(&a.input, w, h, a.rays)?;
+            let objects = a.input.load()?.instances.len();
             super::print_out(&fastfail::table(&a.input, objects, &rows))
         }
         BenchCommand::Features(a) => {
             use crate::bench::features;
-            let settings = crate::render::RenderSettings {
-                width: a.width.clamp(1, 8192),
-                height: a.height.clamp(1, 8192),
+            let basics = Basics {
+                width: a.size.width.clamp(1, 8192),
+                height: a.size.height.clamp(1, 8192),
                 spp: a.spp.clamp(1, 1 << 16),
-                ..Default::default()
+                backend: a.backend,
+                ..Basics::default()
             };
-            let (f, rows) = features::run(&a.input, a.backend, &settings, a.repeat)?;
+            let opts = JobOptions {
+                defaults: basics,
+                flags: Overrides::all(basics),
+                ..JobOptions::default()
+            };
+            let (f, rows) = features::run(a.input.load()?, &opts, a.repeat)?;
             super::print_out(&features::table(&a.input, &f, &rows))
         }
         BenchCommand::Rays(a) => {
@@ -193,8 +208,8 @@ pub fn run(cmd: BenchCommand) -> Result<()> {
                 },
                 kinds: a.kinds,
                 threads: a.threads,
-                width: a.width,
-                height: a.height,
+                width: a.size.width,
+                height: a.size.height,
                 repeat: a.repeat.max(1),
                 shutter: a.shutter,
                 frame_time: a.frame_time,

@@ -2,16 +2,15 @@
 //! Load and build happen once; a finished sequence (all frames on disk) skips both and only previews.
 
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 use std::time::Instant;
 
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use clap::ValueEnum;
 
-use super::{load, progress_bar, DefaultLights, ImageArgs};
-use crate::accel;
+use super::args::Args;
+use super::{load, progress_bar};
 use crate::film::Format;
-use crate::render::RenderSettings;
+use crate::render::job::{self, Basics, CameraChoice, JobOptions, Overrides, Setup, View};
 use crate::scene::defaults;
 use crate::turntable::{
     self, FrameNames, LightMode, Motion, Orbit, Shard, Turntable, DEFAULT_ELEVATION_DEG,
@@ -54,9 +53,6 @@ pub struct TurntableArgs {
     /// Camera distance from the model's centre (default: the bounding sphere fills the view).
     #[arg(long)]
     pub distance: Option<f32>,
-    /// Vertical field of view in degrees.
-    #[arg(long)]
-    pub fov: Option<f32>,
     /// Turn the model in front of a fixed camera instead of orbiting the camera.
     #[arg(long)]
     pub spin: bool,
@@ -88,22 +84,7 @@ pub struct TurntableArgs {
     #[arg(long)]
     pub contact_sheet: Option<PathBuf>,
     #[command(flatten)]
-    pub image: ImageArgs,
-    /// Exposure in stops, applied to PNG frames and previews (the same on every frame).
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-    pub exposure: f32,
-    /// The default light rig (environment + key light), placed relative to frame 0's camera.
-    #[arg(long, value_enum, default_value_t = DefaultLights::Auto)]
-    pub default_lights: DefaultLights,
-    /// Base seed; each frame mixes in its index, so a frame is the same on any machine.
-    #[arg(long, default_value_t = 0)]
-    pub seed: u64,
-    /// Worker threads (default: all cores).
-    #[arg(long)]
-    pub threads: Option<usize>,
-    /// No progress bar or summary.
-    #[arg(short, long)]
-    pub quiet: bool,
+    pub common: Args,
 }
 
 fn check_extension(path: &Path, ext: &str, flag: &str) -> Result<()> {
@@ -118,14 +99,24 @@ fn check_extension(path: &Path, ext: &str, flag: &str) -> Result<()> {
 }
 
 pub fn run(args: TurntableArgs) -> Result<()> {
-    args.image.validate()?;
+    // A sequence takes its settings from the command line only (not from a scene file's [render]).
+    let basics = job::resolve(
+        Basics::default(),
+        &Overrides::default(),
+        &args.common.overrides(),
+    );
+    basics.validate()?;
     if !(args.elevation > -90.0 && args.elevation < 90.0) {
         bail!("--elevation must be between -90 and 90 degrees (exclusive)");
     }
     if !args.azimuth.is_finite() {
         bail!("--azimuth must be a finite number of degrees");
     }
-    let yfov = args.fov.unwrap_or(defaults::DEFAULT_FOV_DEG).to_radians();
+    let yfov = args
+        .common
+        .fov
+        .unwrap_or(defaults::DEFAULT_FOV_DEG)
+        .to_radians();
     if !(yfov > 0.0 && yfov < std::f32::consts::PI) {
         bail!("--fov must be between 0 and 180 degrees");
     }
@@ -148,18 +139,13 @@ pub fn run(args: TurntableArgs) -> Result<()> {
     });
     let names = FrameNames::from_output(&args.output, format, args.frames)?;
     let selected = turntable::select_frames(args.frames, args.shard, args.frame_range.clone())?;
-    if let Some(n) = args.threads {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(n.max(1))
-            .build_global()
-            .context("setting up the thread pool")?;
-    }
+    args.common.set_threads()?;
 
     let exists = |f: &u32| names.path(*f).exists();
     let nothing_to_do = !args.overwrite && selected.iter().all(exists);
     if nothing_to_do {
         // A finished (or finished-by-other-shards) sequence: no need to load or build anything.
-        if !args.quiet {
+        if !args.common.quiet {
             eprintln!(
                 "{}: all {} selected frames exist; nothing to render",
                 args.input.display(),
@@ -167,7 +153,14 @@ pub fn run(args: TurntableArgs) -> Result<()> {
             );
         }
     } else {
-        render_frames(&args, names.clone(), &selected, yfov, shutter_angle)?;
+        render_frames(
+            &args,
+            &basics,
+            names.clone(),
+            &selected,
+            yfov,
+            shutter_angle,
+        )?;
     }
 
     if args.preview.is_some() || args.contact_sheet.is_some() {
@@ -186,16 +179,16 @@ pub fn run(args: TurntableArgs) -> Result<()> {
             turntable::write_gif(
                 &names,
                 args.frames,
-                args.exposure,
+                args.common.exposure,
                 p,
                 args.preview_fps,
                 args.preview_width,
             )?;
         }
         if let Some(p) = &args.contact_sheet {
-            turntable::write_contact_sheet(&names, args.frames, args.exposure, p, 256)?;
+            turntable::write_contact_sheet(&names, args.frames, args.common.exposure, p, 256)?;
         }
-        if !args.quiet {
+        if !args.common.quiet {
             eprintln!("previews written in {:.2} s", t.elapsed().as_secs_f64());
         }
     }
@@ -204,21 +197,37 @@ pub fn run(args: TurntableArgs) -> Result<()> {
 
 fn render_frames(
     args: &TurntableArgs,
+    basics: &Basics,
     names: FrameNames,
     selected: &[u32],
     yfov: f32,
     shutter_angle: f32,
 ) -> Result<()> {
     let t0 = Instant::now();
-    let mut scene = load(&args.input)?;
+    let scene = load(&args.input)?;
     let load_s = t0.elapsed().as_secs_f64();
 
-    let aspect = args.image.width as f32 / args.image.height as f32;
-    let mut orbit = Orbit::framing(&scene.bounds(), yfov, aspect, args.elevation.to_radians());
+    let mut orbit = Orbit::framing(
+        &scene.bounds(),
+        yfov,
+        basics.aspect(),
+        args.elevation.to_radians(),
+    );
     orbit.start_azimuth = args.azimuth.to_radians();
     if let Some(d) = args.distance {
         orbit.distance = d;
     }
+    let opts = JobOptions {
+        defaults: *basics,
+        flags: Overrides::all(*basics),
+        view: View {
+            camera: CameraChoice::Given(orbit.camera(0.0)),
+            ..Default::default()
+        },
+        default_lights: args.common.default_lights,
+        ..Default::default()
+    };
+    let job = Setup::new(scene, &opts)?.build()?;
     let tt = Turntable {
         frames: args.frames,
         names,
@@ -233,34 +242,16 @@ fn render_frames(
             Lights::Camera => LightMode::Camera,
         },
         shutter_angle,
-        settings: RenderSettings {
-            width: args.image.width,
-            height: args.image.height,
-            spp: args.image.spp,
-            max_depth: args.image.max_depth,
-            seed: args.seed,
-            ..Default::default()
-        },
-        exposure: args.exposure,
+        settings: job.settings.clone(),
+        exposure: args.common.exposure,
         overwrite: args.overwrite,
     };
-    if args.default_lights.wanted(&scene) {
-        scene
-            .lights
-            .extend(defaults::light_rig(&tt.first_camera().to_world));
-    }
-    let scene = Arc::new(scene);
-
-    let t1 = Instant::now();
-    let accel = accel::build(scene.clone(), args.image.backend)?;
-    let build_s = t1.elapsed().as_secs_f64();
-
     let progress = progress_bar(
-        args.quiet,
+        args.common.quiet,
         "{spinner} turntable [{bar:40}] {pos}/{len} frames ({msg}), {elapsed} elapsed, eta {eta}",
     );
-    let report = tt.render_sequence(&scene, accel.as_ref(), selected, &progress)?;
-    if !args.quiet {
+    let report = tt.render_sequence(&job.scene, job.accel.as_ref(), selected, &progress)?;
+    if !args.common.quiet {
         let total: f64 = report.frame_seconds.iter().sum();
         eprintln!(
             "{}: {} frames rendered, {} skipped (of {} selected, {} in the sequence), {}x{} at {} spp with {}",
@@ -269,13 +260,14 @@ fn render_frames(
             report.skipped.len(),
             selected.len(),
             args.frames,
-            args.image.width,
-            args.image.height,
-            args.image.spp,
-            accel.name(),
+            basics.width,
+            basics.height,
+            basics.spp,
+            job.accel.name(),
         );
         eprintln!(
-            "cost: load {load_s:.3} s, build {build_s:.3} s (once), per frame {:.3} s mean ({:.2} s for {} frames, {:.2} Mrays/s){}",
+            "cost: load {load_s:.3} s, build {:.3} s (once), per frame {:.3} s mean ({:.2} s for {} frames, {:.2} Mrays/s){}",
+            job.build_seconds,
             report.mean_frame_seconds(),
             total,
             report.rendered.len(),

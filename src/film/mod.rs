@@ -6,10 +6,41 @@ pub mod filter;
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use anyhow::{bail, Context, Result};
 use glam::Vec4;
 
 use crate::geometry::colour::linear_to_srgb;
+
+#[derive(Debug, thiserror::Error)]
+pub enum FilmError {
+    #[error("{}: unsupported output type (expected .png or .exr)", .0.display())]
+    UnsupportedFormat(PathBuf),
+    #[error("writing {}", path.display())]
+    Write {
+        path: PathBuf,
+        #[source]
+        source: EncodeError,
+    },
+    #[error("renaming into {}", path.display())]
+    Rename {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{}: {error}", path.display())]
+    ReadExr {
+        path: PathBuf,
+        error: exr::error::Error,
+    },
+}
+
+/// Why an image could not be encoded into its file.
+#[derive(Debug, thiserror::Error)]
+pub enum EncodeError {
+    #[error(transparent)]
+    Png(#[from] image::ImageError),
+    #[error("{0}")]
+    Exr(exr::error::Error),
+}
 
 /// A linear-light RGBA image, row-major, first row at the top.
 #[derive(Clone, Debug, PartialEq)]
@@ -92,28 +123,6 @@ impl Image {
         s / (3 * self.pixels.len().max(1)) as f64
     }
 
-    /// Per-pixel squared RGB errors against a reference: (absolute, relative as in `rel_mse`), each
-    /// the mean over the three channels.
-    pub fn pixel_errors(&self, reference: &Image) -> Vec<(f64, f64)> {
-        assert_eq!(
-            (self.width, self.height),
-            (reference.width, reference.height)
-        );
-        self.pixels
-            .iter()
-            .zip(&reference.pixels)
-            .map(|(a, b)| {
-                let (mut abs, mut rel) = (0.0, 0.0);
-                for c in 0..3 {
-                    let (x, r) = (a[c] as f64, b[c] as f64);
-                    abs += (x - r) * (x - r) / 3.0;
-                    rel += (x - r) * (x - r) / (r * r + 0.01) / 3.0;
-                }
-                (abs, rel)
-            })
-            .collect()
-    }
-
     /// A grey image of per-pixel values (e.g. sample counts), for writing as an AOV.
     pub fn from_scalars(width: usize, height: usize, values: &[f32]) -> Image {
         assert_eq!(values.len(), width * height);
@@ -144,7 +153,7 @@ pub enum Format {
 }
 
 impl Format {
-    pub fn from_path(path: &Path) -> Result<Self> {
+    pub fn from_path(path: &Path) -> Result<Self, FilmError> {
         match path
             .extension()
             .and_then(|e| e.to_str())
@@ -153,27 +162,30 @@ impl Format {
         {
             Some("png") => Ok(Format::Png),
             Some("exr") => Ok(Format::Exr),
-            _ => bail!(
-                "{}: unsupported output type (expected .png or .exr)",
-                path.display()
-            ),
+            _ => Err(FilmError::UnsupportedFormat(path.to_path_buf())),
         }
     }
 }
 
 /// Writes the image (format from the extension) through a temporary file and an atomic rename.
-pub fn write(image: &Image, path: &Path, exposure: f32) -> Result<()> {
+pub fn write(image: &Image, path: &Path, exposure: f32) -> Result<(), FilmError> {
     let format = Format::from_path(path)?;
     let tmp = temp_path(path);
     let result = match format {
         Format::Png => write_png(image, &tmp, exposure),
         Format::Exr => write_exr(image, &tmp),
     };
-    if let Err(e) = result {
+    if let Err(source) = result {
         let _ = fs::remove_file(&tmp);
-        return Err(e.context(format!("writing {}", path.display())));
+        return Err(FilmError::Write {
+            path: path.to_path_buf(),
+            source,
+        });
     }
-    fs::rename(&tmp, path).with_context(|| format!("renaming into {}", path.display()))
+    fs::rename(&tmp, path).map_err(|source| FilmError::Rename {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 fn temp_path(path: &Path) -> PathBuf {
@@ -185,7 +197,7 @@ fn temp_path(path: &Path) -> PathBuf {
     path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
 }
 
-fn write_png(image: &Image, path: &Path, exposure: f32) -> Result<()> {
+fn write_png(image: &Image, path: &Path, exposure: f32) -> Result<(), EncodeError> {
     // Opaque RGB: the background is what the camera sees there (alpha is kept in EXR).
     let mut buf = Vec::with_capacity(image.width * image.height * 3);
     for p in &image.pixels {
@@ -206,7 +218,7 @@ fn write_png(image: &Image, path: &Path, exposure: f32) -> Result<()> {
     Ok(())
 }
 
-fn write_exr(image: &Image, path: &Path) -> Result<()> {
+fn write_exr(image: &Image, path: &Path) -> Result<(), EncodeError> {
     use exr::prelude::{SpecificChannels, Vec2, WritableImage};
     let w = image.width;
     let channels = SpecificChannels::rgba(|Vec2(x, y)| {
@@ -216,11 +228,11 @@ fn write_exr(image: &Image, path: &Path) -> Result<()> {
     exr::prelude::Image::from_channels((image.width, image.height), channels)
         .write()
         .to_file(path)
-        .map_err(|e| anyhow::anyhow!("{e}"))
+        .map_err(EncodeError::Exr)
 }
 
 /// Reads an EXR written by `write` back into linear RGBA (for tests and reference images).
-pub fn read_exr(path: &Path) -> Result<Image> {
+pub fn read_exr(path: &Path) -> Result<Image, FilmError> {
     use exr::prelude::{read_first_rgba_layer_from_file, Vec2};
     let img = read_first_rgba_layer_from_file(
         path,
@@ -232,7 +244,10 @@ pub fn read_exr(path: &Path) -> Result<Image> {
             px[y * *w + x] = glam::Vec4::new(r, g, b, a)
         },
     )
-    .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    .map_err(|error| FilmError::ReadExr {
+        path: path.to_path_buf(),
+        error,
+    })?;
     let size = img.layer_data.size;
     Ok(Image {
         width: size.width(),

@@ -92,17 +92,6 @@ pub struct Hit {
 pub const CSG_BIT: u32 = 1 << 31;
 
 impl Hit {
-    /// A hit on surface `surface` of CSG object `object` at distance `t`.
-    pub fn csg_hit(t: f32, object: u32, surface: u32) -> Self {
-        Hit {
-            t,
-            u: 0.0,
-            v: 0.0,
-            inst: object | CSG_BIT,
-            prim: surface,
-        }
-    }
-
     /// The CSG object and surface id, for a hit on a CSG object.
     pub fn csg(&self) -> Option<(u32, u32)> {
         (self.inst & CSG_BIT != 0).then_some((self.inst & !CSG_BIT, self.prim))

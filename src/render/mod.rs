@@ -4,6 +4,7 @@
 pub mod bsdf;
 pub mod camera;
 pub mod integrator;
+pub mod job;
 pub mod light;
 pub mod offset;
 pub mod surface;

@@ -6,8 +6,9 @@ use std::sync::Arc;
 
 use glint::accel::{self, Backend};
 use glint::film::Image;
+use glint::render::job::{JobOptions, Overrides, Setup};
 use glint::render::{self, RenderSettings};
-use glint::scene::{defaults, Camera, Scene};
+use glint::scene::{Camera, Scene};
 
 /// The shared asset folder (`../shared/assets` beside the checkout), when present.
 pub fn shared_assets() -> Option<PathBuf> {
@@ -58,12 +59,25 @@ pub fn all_model_files() -> Vec<PathBuf> {
     files
 }
 
-/// Loads a model as `glint render` does: the file's first camera or a framing one, and the default
-/// light rig when it has no lights of its own.
+/// The job options of `glint render` at this size with no other flag.
+pub fn render_options(width: usize, height: usize) -> JobOptions {
+    let flags = Overrides {
+        width: Some(width),
+        height: Some(height),
+        ..Default::default()
+    };
+    JobOptions {
+        flags,
+        ..Default::default()
+    }
+}
+
+/// Loads a model as `glint render` does (through its render job, without building): posed, the
+/// file's first camera or a framing one, and the default light rig when it has no lights of its own.
 pub fn load_for_render(path: &Path, width: usize, height: usize) -> (Arc<Scene>, Camera) {
-    let mut scene = Scene::load(path).unwrap_or_else(|e| panic!("{e}"));
-    let camera = defaults::default_view(&mut scene, width as f32 / height as f32);
-    (Arc::new(scene), camera)
+    let scene = Scene::load(path).unwrap_or_else(|e| panic!("{e}"));
+    let setup = Setup::new(scene, &render_options(width, height)).unwrap_or_else(|e| panic!("{e}"));
+    (Arc::new(setup.scene), setup.camera)
 }
 
 /// The backends that trace whole scenes (obvhs, a bench peer, traces triangles only).
