@@ -140,24 +140,17 @@ proptest! {
     #[test]
     fn de_morgan(a in list(), b in list(), c in list()) {
         // A - (B u C) = (A - B) n (A - C), and A - (B n C) = (A - B) u (A - C).
-        let bc = Intervals::combine(Op::Union, &b, &c, tol);
-        let lhs = Intervals::combine(Op::Difference, &a, &bc, tol);
-        let rhs = Intervals::combine(
-            Op::Intersection,
-            &Intervals::combine(Op::Difference, &a, &b, tol),
-            &Intervals::combine(Op::Difference, &a, &c, tol),
-            tol,
-        );
-        prop_assert!(same(&lhs, &rhs), "{:?} vs {:?}", spans(&lhs), spans(&rhs));
-        let bc = Intervals::combine(Op::Intersection, &b, &c, tol);
-        let lhs = Intervals::combine(Op::Difference, &a, &bc, tol);
-        let rhs = Intervals::combine(
-            Op::Union,
-            &Intervals::combine(Op::Difference, &a, &b, tol),
-            &Intervals::combine(Op::Difference, &a, &c, tol),
-            tol,
-        );
-        prop_assert!(same(&lhs, &rhs), "{:?} vs {:?}", spans(&lhs), spans(&rhs));
+        for (inner, outer) in [(Op::Union, Op::Intersection), (Op::Intersection, Op::Union)] {
+            let bc = Intervals::combine(inner, &b, &c, tol);
+            let lhs = Intervals::combine(Op::Difference, &a, &bc, tol);
+            let rhs = Intervals::combine(
+                outer,
+                &Intervals::combine(Op::Difference, &a, &b, tol),
+                &Intervals::combine(Op::Difference, &a, &c, tol),
+                tol,
+            );
+            prop_assert!(same(&lhs, &rhs), "{:?} vs {:?}", spans(&lhs), spans(&rhs));
+        }
         // A n B = A - (A - B).
         let ab = Intervals::combine(Op::Intersection, &a, &b, tol);
         let amab = Intervals::combine(Op::Difference, &a, &Intervals::combine(Op::Difference, &a, &b, tol), tol);
@@ -488,7 +481,7 @@ fn union_early_exit_matches_full_evaluation() {
 
 #[test]
 fn closed_mesh_operand_matches_the_triangle_bvh_and_the_analytic_box() {
-    use crate::accel::{bvh::Bvh, Accel};
+    use crate::accel::{bvh::BvhAccel, Accel};
     use crate::scene::generate;
     use std::sync::Arc;
     // Alone, a mesh operand finds what the BVH finds over the same triangles, from outside and inside.
@@ -503,7 +496,7 @@ fn closed_mesh_operand_matches_the_triangle_bvh_and_the_analytic_box() {
         Mat4::IDENTITY,
     )
     .unwrap();
-    let bvh = Bvh::build(Arc::new(generate::single_mesh_scene(ico)));
+    let bvh = BvhAccel::build(Arc::new(generate::single_mesh_scene(ico)));
     let mut rng = Rng(11);
     let (mut hits, mut inside) = (0, 0);
     for k in 0..4000 {
