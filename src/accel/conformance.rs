@@ -272,7 +272,7 @@ fn empty_scenes_and_segment_limits() {
 }
 
 /// The unit quad [0,1]^2 at z = 0: triangle 0 = (0,1,2), triangle 1 = (0,2,3).
-fn quad() -> Mesh {
+pub(super) fn quad() -> Mesh {
     Mesh {
         name: "quad".into(),
         positions: vec![
@@ -420,28 +420,24 @@ fn instances_report_their_index() {
     for case in cases() {
         let name = &case.name;
         let a = (case.build)(s.clone());
-        let at = |x: f32, y: f32, z: f32| a.intersect(&down(Vec3::new(x, y, z))).unwrap();
-        let h = at(0.2, 0.7, 1.0);
-        assert_eq!((h.inst, h.prim), (0, 1), "{name}");
-        assert!((h.t - 6.0).abs() < 1e-5, "{name}");
-        let h = at(10.7, 0.2, 1.0);
-        assert_eq!((h.inst, h.prim), (1, 0), "{name}");
-        assert!((h.t - 1.0).abs() < 1e-5, "{name}");
-        assert!(
-            (h.u - 0.5).abs() < 1e-5 && (h.v - 0.2).abs() < 1e-5,
-            "{name}"
-        );
-        let h = at(20.2, 0.7, 1.0);
-        assert_eq!((h.inst, h.prim), (2, 1), "{name}");
-        assert!((h.t - 2.0).abs() < 1e-5, "{name}");
-        // Scaled by 4: (33, 1) is (0.75, 0.25) in object space, triangle 0.
-        let h = at(33.0, 1.0, 3.0);
-        assert_eq!((h.inst, h.prim), (3, 0), "{name}");
-        assert!((h.t - 3.0).abs() < 1e-5, "{name}");
-        assert!(
-            (h.u - 0.5).abs() < 1e-5 && (h.v - 0.25).abs() < 1e-5,
-            "{name}: {h:?}"
-        );
+        // Ray origin, then instance, triangle, distance and (where checked) barycentrics. Scaled by
+        // 4, (33, 1) is (0.75, 0.25) in object space, triangle 0.
+        for (o, id, t, uv) in [
+            ((0.2, 0.7, 1.0), (0, 1), 6.0, None),
+            ((10.7, 0.2, 1.0), (1, 0), 1.0, Some((0.5, 0.2))),
+            ((20.2, 0.7, 1.0), (2, 1), 2.0, None),
+            ((33.0, 1.0, 3.0), (3, 0), 3.0, Some((0.5, 0.25))),
+        ] {
+            let h = a.intersect(&down(Vec3::from(o))).unwrap();
+            assert_eq!((h.inst, h.prim), id, "{name}: {o:?}");
+            assert!((h.t - t).abs() < 1e-5, "{name}: {o:?}: {h:?}");
+            if let Some((u, v)) = uv {
+                assert!(
+                    (h.u - u).abs() < 1e-5 && (h.v - v).abs() < 1e-5,
+                    "{name}: {h:?}"
+                );
+            }
+        }
         assert!(a.intersect(&down(Vec3::new(5.0, 0.5, 1.0))).is_none());
         let o = Vec3::new(33.0, 1.0, 3.0);
         assert!(a.occluded(&Ray::segment(o, Vec3::NEG_Z, 3.5)), "{name}");

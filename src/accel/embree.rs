@@ -712,26 +712,12 @@ impl Accel for EmbreeAccel {
 
 #[cfg(test)]
 mod tests {
+    // Queries are tested with every backend's in `accel::conformance`; here, Embree's own paths.
     use super::*;
+    use crate::accel::conformance::quad;
     use crate::scene::{AlphaMode, Instance, Material};
     use glam::{Mat4, Vec3, Vec4};
     use rayon::prelude::*;
-
-    /// The unit quad [0,1]^2 at z = 0: triangle 0 = (0,1,2), triangle 1 = (0,2,3).
-    fn quad() -> Mesh {
-        Mesh {
-            name: "quad".into(),
-            positions: vec![
-                Vec3::new(0.0, 0.0, 0.0),
-                Vec3::new(1.0, 0.0, 0.0),
-                Vec3::new(1.0, 1.0, 0.0),
-                Vec3::new(0.0, 1.0, 0.0),
-            ],
-            normals: vec![Vec3::Z; 4],
-            indices: vec![[0, 1, 2], [0, 2, 3]],
-            ..Default::default()
-        }
-    }
 
     fn scene_of(meshes: Vec<Mesh>, instances: Vec<Instance>, materials: Vec<Material>) -> Scene {
         let s = Scene {

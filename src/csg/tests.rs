@@ -158,6 +158,17 @@ proptest! {
     }
 }
 
+/// The cube [-1, 1]^3, material 0.
+fn unit_cube() -> Node {
+    Node::primitive(
+        Shape::Box {
+            min: Vec3::splat(-1.0),
+            max: Vec3::splat(1.0),
+        },
+        0,
+    )
+}
+
 fn sphere(c: Vec3, r: f32) -> Node {
     Node::primitive(
         Shape::Sphere {
@@ -250,13 +261,7 @@ impl Rng {
 fn subtracted_surfaces_face_out_of_the_result() {
     let obj = CsgObject::new(
         Node::difference(vec![
-            Node::primitive(
-                Shape::Box {
-                    min: Vec3::splat(-1.0),
-                    max: Vec3::splat(1.0),
-                },
-                0,
-            ),
+            unit_cube(),
             Node::Primitive {
                 shape: Shape::Sphere {
                     center: Vec3::ZERO,
@@ -306,16 +311,7 @@ fn coincident_faces_leave_no_speckles() {
         material: 1,
     };
     let obj = CsgObject::new(
-        Node::difference(vec![
-            Node::primitive(
-                Shape::Box {
-                    min: Vec3::splat(-1.0),
-                    max: Vec3::splat(1.0),
-                },
-                0,
-            ),
-            slot,
-        ]),
+        Node::difference(vec![unit_cube(), slot]),
         Mat4::from_rotation_y(0.3) * Mat4::from_translation(Vec3::new(0.1, 0.2, 0.3)),
     )
     .unwrap();
@@ -543,16 +539,7 @@ fn closed_mesh_operand_matches_the_triangle_bvh_and_the_analytic_box() {
     )
     .unwrap();
     let analytic = CsgObject::new(
-        Node::difference(vec![
-            Node::primitive(
-                Shape::Box {
-                    min: Vec3::splat(-1.0),
-                    max: Vec3::splat(1.0),
-                },
-                0,
-            ),
-            sphere(),
-        ]),
+        Node::difference(vec![unit_cube(), sphere()]),
         Mat4::from_rotation_y(0.3),
     )
     .unwrap();
