@@ -114,10 +114,10 @@ fn run(name: &str, scene: Scene, rays: Option<Vec<Ray>>, n: usize) {
         .collect();
     for lambda in lambdas {
         let t = Instant::now();
-        let g = GridAccel::build_with(scene.clone(), lambda);
+        let g = GridAccel::build_lambda(scene.clone(), lambda);
         let build = t.elapsed().as_secs_f64();
         let rate = mrays(&g, &rays, 3);
-        let r = g.resolution();
+        let r = g.statics().resolution();
         let agree = compare::compare(&scene, &g, bvh.as_ref(), &rays[..rays.len().min(100_000)]);
         println!(
             "  grid l={lambda:<3}{} build {:7.1} ms  {:8.1} MB  {rate:7.3} Mrays/s  grid/bvh {:.3}  {}x{}x{} cells, {:.1}% occupied, {:.2} entries/tri, mismatches {}",
@@ -128,8 +128,8 @@ fn run(name: &str, scene: Scene, rays: Option<Vec<Ray>>, n: usize) {
             r[0],
             r[1],
             r[2],
-            100.0 * g.occupied_cells() as f64 / g.cell_count() as f64,
-            g.entry_count() as f64 / scene.triangle_count() as f64,
+            100.0 * g.statics().occupied_cells() as f64 / g.statics().cell_count() as f64,
+            g.statics().entry_count() as f64 / scene.triangle_count() as f64,
             agree.mismatch_count + agree.grazing + agree.edges
         );
     }

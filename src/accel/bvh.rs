@@ -2,22 +2,23 @@
 //! (packet-aware costs) and collapsed from the binary tree. Traversal tests a node's eight boxes at
 //! once (structure-of-arrays nodes; AVX where the CPU has it, two SSE halves otherwise), front to back
 //! for closest hits, with conservative slab tests (Ize 2013), and leaves' triangles four at a time
-//! with the watertight test (Woop 2013).
+//! with the watertight test (Woop 2013). The backend is this structure in a `Layered` composition
+//! (moving instances and CSG objects after it); moving instances each hold a bare one of their own.
 
 use std::mem::MaybeUninit;
-use std::sync::Arc;
 
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::flat::{self, TriId};
-use super::motion::MovingSet;
-use super::objects::ObjectBvh;
-use super::Accel;
+use super::flat::TriId;
+use super::layered::{Layered, Triangles};
 use crate::geometry::f4::F4;
 use crate::geometry::triangle::{self, RayShear, Tri4};
-use crate::geometry::{gamma, Aabb, Hit, Ray};
+use crate::geometry::{Aabb, Hit, Ray, SLAB_WIDEN};
 use crate::scene::Scene;
+
+/// The `bvh` backend: the BVH over the static triangles, then moving instances and CSG objects.
+pub type BvhAccel = Layered<Bvh>;
 
 /// Number of SAH bins per axis.
 const BINS: usize = 16;
@@ -76,36 +77,22 @@ struct NodeW {
     count: [u32; W],
 }
 
+/// The 8-wide BVH over a set of triangles.
 pub struct Bvh {
-    scene: Arc<Scene>,
     /// Root at index 0 (absent for an empty scene).
     nodes: Vec<NodeW>,
     /// World-space triangles in packets of four; a leaf is a run of packets.
     tris: Vec<Tri4>,
     /// Identity of each packet lane (`4 * packet + lane`).
     ids: Vec<TriId>,
-    /// The scene's CSG objects, tested after the triangles.
-    objects: ObjectBvh,
-    /// Instances that move during the shutter (absent for static scenes).
-    moving: Option<Box<MovingSet>>,
     /// Whether the CPU has AVX, for the 8-lane box test.
     #[cfg(target_arch = "x86_64")]
     avx: bool,
 }
 
 impl Bvh {
-    /// Builds over the scene's static instances (world space), plus its moving ones (`MovingSet`).
-    pub fn build(scene: Arc<Scene>) -> Self {
-        let (tris, ids) = flat::flatten(&scene);
-        let moving = MovingSet::build(&scene).map(Box::new);
-        Self {
-            moving,
-            ..Self::from_triangles(scene, tris, ids)
-        }
-    }
-
     /// A BVH over exactly these triangles (hits report `ids`), in whatever space they are given.
-    pub fn from_triangles(scene: Arc<Scene>, tris: Vec<[Vec3; 3]>, ids: Vec<TriId>) -> Self {
+    pub fn new(tris: Vec<[Vec3; 3]>, ids: Vec<TriId>) -> Self {
         let mut refs: Vec<PrimRef> = if tris.len() > PARALLEL_THRESHOLD {
             tris.par_iter()
                 .enumerate()
@@ -140,29 +127,11 @@ impl Bvh {
             );
         }
         Self {
-            objects: ObjectBvh::build(&scene.csg),
-            scene,
             nodes: out.nodes,
             tris: out.packets,
             ids: out.ids,
-            moving: None,
             #[cfg(target_arch = "x86_64")]
             avx: W == 8 && std::arch::is_x86_feature_detected!("avx"),
-        }
-    }
-
-    /// Closest (or, with `any`, first) hit on this structure's own triangles only.
-    pub(super) fn traverse_object(&self, ray: &Ray, any: bool) -> Option<Hit> {
-        self.traverse(ray, any)
-    }
-
-    /// The backend's answer: its own triangles, then the moving instances.
-    #[inline]
-    fn query(&self, ray: &Ray, any: bool) -> Option<Hit> {
-        let hit = self.traverse(ray, any);
-        match &self.moving {
-            None => hit,
-            Some(m) => m.intersect(&self.scene, ray, hit, any),
         }
     }
 
@@ -170,17 +139,26 @@ impl Bvh {
         self.nodes.len()
     }
 
+    /// This BVH walking with SSE box tests only (the walk of CPUs without AVX), for the tests.
+    #[cfg(test)]
+    pub(super) fn without_avx(self) -> Self {
+        Self {
+            #[cfg(target_arch = "x86_64")]
+            avx: false,
+            ..self
+        }
+    }
+
     /// Bytes held by the structure (nodes, triangles, ids).
     fn bytes(&self) -> usize {
-        self.moving.as_ref().map_or(0, |m| m.memory_bytes())
-            + self.nodes.len() * std::mem::size_of::<NodeW>()
+        self.nodes.len() * std::mem::size_of::<NodeW>()
             + self.tris.len() * std::mem::size_of::<Tri4>()
             + self.ids.len() * std::mem::size_of::<TriId>()
     }
 
     /// Walks the tree front to back, keeping the closest accepted hit; with `any`, returns the first.
     #[inline(always)]
-    fn traverse(&self, ray: &Ray, any: bool) -> Option<Hit> {
+    pub(super) fn traverse(&self, scene: &Scene, ray: &Ray, any: bool) -> Option<Hit> {
         if self.nodes.is_empty() {
             return None;
         }
@@ -189,16 +167,16 @@ impl Bvh {
             // SAFETY: `avx` is set only where the CPU has AVX.
             return unsafe {
                 if any {
-                    self.walk_avx::<true>(ray)
+                    self.walk_avx::<true>(scene, ray)
                 } else {
-                    self.walk_avx::<false>(ray)
+                    self.walk_avx::<false>(scene, ray)
                 }
             };
         }
         if any {
-            self.walk::<true, SseSlabs>(ray)
+            self.walk::<true, SseSlabs>(scene, ray)
         } else {
-            self.walk::<false, SseSlabs>(ray)
+            self.walk::<false, SseSlabs>(scene, ray)
         }
     }
 
@@ -206,14 +184,14 @@ impl Bvh {
     /// an add on its own, so the hits are bit-identical to the SSE walk's.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx")]
-    unsafe fn walk_avx<const ANY: bool>(&self, ray: &Ray) -> Option<Hit> {
-        self.walk::<ANY, AvxSlabs>(ray)
+    unsafe fn walk_avx<const ANY: bool>(&self, scene: &Scene, ray: &Ray) -> Option<Hit> {
+        self.walk::<ANY, AvxSlabs>(scene, ray)
     }
 
     /// The walk proper. The nearest child hit goes on without a trip through the stack; the others
     /// are pushed farthest first (in lane order for `ANY`).
     #[inline(always)]
-    fn walk<const ANY: bool, S: Slabs>(&self, ray: &Ray) -> Option<Hit> {
+    fn walk<const ANY: bool, S: Slabs>(&self, scene: &Scene, ray: &Ray) -> Option<Hit> {
         let any = ANY;
         let sh = RayShear::new(ray.d);
         let slabs = S::new(ray);
@@ -239,7 +217,7 @@ impl Bvh {
                             continue;
                         }
                         let id = self.ids[4 * packet + lane];
-                        if !id.accepts(&self.scene, h.u[lane], h.v[lane], ray) {
+                        if !id.accepts(scene, h.u[lane], h.v[lane], ray) {
                             continue;
                         }
                         let hit = Hit {
@@ -335,7 +313,7 @@ trait Slabs {
     fn test(&self, node: &NodeW, t_max: f32) -> (u32, [f32; W]);
 }
 
-const FAR_SCALE: f32 = 1.0 + 2.0 * gamma(3);
+const FAR_SCALE: f32 = SLAB_WIDEN;
 
 /// Per axis, the bound rows entered first and last (`NodeW::b`: lo x y z, hi x y z).
 fn near_far(inv: [f32; 3]) -> ([usize; 3], [usize; 3]) {
@@ -936,127 +914,24 @@ fn find_split(refs: &[PrimRef], bounds: &Box3, cb: &Box3) -> Option<Split> {
         .map(|(_, s)| s)
 }
 
-impl Accel for Bvh {
-    fn name(&self) -> &'static str {
-        "bvh"
+impl Triangles for Bvh {
+    const NAME: &'static str = "bvh";
+
+    fn build(_: &Scene, tris: Vec<[Vec3; 3]>, ids: Vec<TriId>) -> Self {
+        Self::new(tris, ids)
     }
 
-    fn intersect(&self, ray: &Ray) -> Option<Hit> {
-        // Decided before the walk, so the walk of a scene without CSG compiles as it did before
-        // (testing after it cost 5% on coherent rays).
-        if self.objects.is_empty() {
-            return self.query(ray, false);
-        }
-        let best = self.query(ray, false);
-        self.objects
-            .intersect(&self.scene.csg, ray, best, crate::geometry::CSG_BIT)
+    #[inline]
+    fn intersect(&self, scene: &Scene, ray: &Ray) -> Option<Hit> {
+        self.traverse(scene, ray, false)
     }
 
-    fn occluded(&self, ray: &Ray) -> bool {
-        self.query(ray, true).is_some()
-            || (!self.objects.is_empty() && self.objects.occluded(&self.scene.csg, ray))
+    #[inline]
+    fn occluded(&self, scene: &Scene, ray: &Ray) -> bool {
+        self.traverse(scene, ray, true).is_some()
     }
 
     fn memory_bytes(&self) -> usize {
         self.bytes()
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::accel::testing::{brute, scene};
-    use crate::scene::{generate, Instance};
-    use glam::Mat4;
-
-    #[test]
-    fn matches_brute_force_on_random_rays() {
-        let s = scene(
-            vec![generate::quad_grid(40)],
-            vec![
-                Instance::new(0, Mat4::IDENTITY),
-                Instance::new(
-                    0,
-                    Mat4::from_rotation_x(0.7) * Mat4::from_translation(Vec3::new(-5.0, 3.0, 4.0)),
-                ),
-            ],
-        );
-        // The walk this CPU takes, and (on x86_64) the portable SSE one too.
-        #[allow(unused_mut)]
-        let mut bvhs = vec![Bvh::build(s.clone())];
-        #[cfg(target_arch = "x86_64")]
-        bvhs.push(Bvh {
-            avx: false,
-            ..Bvh::build(s.clone())
-        });
-        let mut rng = 0x1234_5678u64;
-        let mut next = || {
-            rng ^= rng << 13;
-            rng ^= rng >> 7;
-            rng ^= rng << 17;
-            (rng >> 40) as f32 / (1u64 << 24) as f32
-        };
-        let mut hits = 0;
-        for _ in 0..20_000 {
-            let o = Vec3::new(
-                next() * 50.0 - 5.0,
-                next() * 50.0 - 5.0,
-                20.0 * next() - 5.0,
-            );
-            let d = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize();
-            let ray = Ray::new(o, d);
-            let want = brute(&s, &ray);
-            for bvh in &bvhs {
-                let got = bvh.intersect(&ray).map(|h| (h.t, h.inst, h.prim));
-                assert_eq!(got, want, "ray {ray:?}");
-                assert_eq!(bvh.occluded(&ray), want.is_some());
-            }
-            hits += want.is_some() as u32;
-        }
-        assert!(hits > 2000, "test rays should hit often, hit {hits}");
-    }
-
-    #[test]
-    fn empty_scene_and_segment_limits() {
-        let bvh = Bvh::build(scene(vec![], vec![]));
-        assert!(bvh.intersect(&Ray::new(Vec3::ZERO, Vec3::Z)).is_none());
-        let bvh = Bvh::build(scene(
-            vec![generate::quad_grid(2)],
-            vec![Instance::new(0, Mat4::IDENTITY)],
-        ));
-        let down = Ray::new(Vec3::new(0.5, 0.3, 1.0), -Vec3::Z);
-        assert!((bvh.intersect(&down).unwrap().t - 1.0).abs() < 1e-6);
-        assert!(!bvh.occluded(&Ray::segment(down.o, down.d, 0.99)));
-        assert!(bvh.occluded(&Ray::segment(down.o, down.d, 1.01)));
-        let beyond = Ray {
-            t_min: 1.01,
-            ..down
-        };
-        assert!(bvh.intersect(&beyond).is_none());
-    }
-
-    #[test]
-    fn axis_aligned_rays_inside_flat_boxes() {
-        // Every node box of a planar grid is flat in z; rays parallel to it along x hit nothing,
-        // and rays straight down the z axis through vertices always hit.
-        let s = scene(
-            vec![generate::quad_grid(16)],
-            vec![Instance::new(0, Mat4::IDENTITY)],
-        );
-        #[allow(unused_mut)]
-        let mut bvhs = vec![Bvh::build(s.clone())];
-        #[cfg(target_arch = "x86_64")]
-        bvhs.push(Bvh {
-            avx: false,
-            ..Bvh::build(s)
-        });
-        for (bvh, y, x) in bvhs
-            .iter()
-            .flat_map(|b| (0..=16).flat_map(move |y| (0..=16).map(move |x| (b, y, x))))
-        {
-            let r = Ray::new(Vec3::new(x as f32, y as f32, 3.0), -Vec3::Z);
-            let h = bvh.intersect(&r).expect("a ray through a grid vertex hits");
-            assert!((h.t - 3.0).abs() < 1e-6);
-        }
     }
 }

@@ -712,26 +712,12 @@ impl Accel for EmbreeAccel {
 
 #[cfg(test)]
 mod tests {
+    // Queries are tested with every backend's in `accel::conformance`; here, Embree's own paths.
     use super::*;
+    use crate::accel::conformance::quad;
     use crate::scene::{AlphaMode, Instance, Material};
     use glam::{Mat4, Vec3, Vec4};
     use rayon::prelude::*;
-
-    /// The unit quad [0,1]^2 at z = 0: triangle 0 = (0,1,2), triangle 1 = (0,2,3).
-    fn quad() -> Mesh {
-        Mesh {
-            name: "quad".into(),
-            positions: vec![
-                Vec3::new(0.0, 0.0, 0.0),
-                Vec3::new(1.0, 0.0, 0.0),
-                Vec3::new(1.0, 1.0, 0.0),
-                Vec3::new(0.0, 1.0, 0.0),
-            ],
-            normals: vec![Vec3::Z; 4],
-            indices: vec![[0, 1, 2], [0, 2, 3]],
-            ..Default::default()
-        }
-    }
 
     fn scene_of(meshes: Vec<Mesh>, instances: Vec<Instance>, materials: Vec<Material>) -> Scene {
         let s = Scene {
@@ -776,111 +762,25 @@ mod tests {
         );
     }
 
+    /// Batches publish all their world rays at once and the alpha filter finds each by ray id, also
+    /// inside instances: they answer as single queries do (which `accel::conformance` checks).
     #[test]
-    fn unit_quad_hits_and_segments() {
-        let accel = build(scene_of(
-            vec![quad()],
-            vec![Instance::new(0, Mat4::IDENTITY)],
-            vec![Material::default()],
-        ));
-        assert_eq!(accel.name(), "embree");
-        // Above triangle 0 (below the diagonal y = x): u weights vertex 1, v vertex 2.
-        let h = accel.intersect(&down(Vec3::new(0.7, 0.2, 2.0))).unwrap();
-        assert_eq!((h.inst, h.prim), (0, 0));
-        assert!((h.t - 2.0).abs() < 1e-6);
-        // p = (0.7, 0.2) = u (1,0) + v (1,1) -> v = 0.2, u = 0.5.
-        assert!(
-            (h.u - 0.5).abs() < 1e-5 && (h.v - 0.2).abs() < 1e-5,
-            "{h:?}"
-        );
-        let h = accel.intersect(&down(Vec3::new(0.2, 0.7, 2.0))).unwrap();
-        assert_eq!(h.prim, 1);
-        // Misses.
-        assert!(accel.intersect(&down(Vec3::new(1.5, 0.5, 2.0))).is_none());
-        assert!(accel
-            .intersect(&Ray::new(Vec3::new(0.5, 0.5, 2.0), Vec3::Z))
-            .is_none());
-        // Segments.
-        let o = Vec3::new(0.5, 0.25, 2.0);
-        assert!(accel.occluded(&Ray::segment(o, Vec3::NEG_Z, 3.0)));
-        assert!(!accel.occluded(&Ray::segment(o, Vec3::NEG_Z, 1.5)));
-        assert!(accel
-            .intersect(&Ray::segment(o, Vec3::NEG_Z, 1.5))
-            .is_none());
-        let beyond = Ray {
-            t_min: 2.5,
-            ..down(o)
+    fn alpha_tested_batches_match_single_queries() {
+        let mask = |alpha: f32| Material {
+            alpha_mode: AlphaMode::Mask(0.5),
+            base_color: Vec4::new(1.0, 1.0, 1.0, alpha),
+            ..Default::default()
         };
-        assert!(accel.intersect(&beyond).is_none());
-        assert!(!accel.occluded(&beyond));
-        // An unnormalised direction: t is in units of |d|.
-        let h = accel
-            .intersect(&Ray::new(o, Vec3::new(0.0, 0.0, -4.0)))
-            .unwrap();
-        assert!((h.t - 0.5).abs() < 1e-6);
-    }
-
-    #[test]
-    fn empty_scene_never_hits() {
-        let accel = build(Scene::default());
-        assert!(accel.intersect(&down(Vec3::Z)).is_none());
-        assert!(!accel.occluded(&down(Vec3::Z)));
-    }
-
-    #[test]
-    fn instances_report_their_index() {
-        // Mesh 0 used three times (instanced, one scaled), mesh 1 once (flattened into the top scene).
-        let accel = build(scene_of(
-            vec![quad(), quad()],
-            vec![
-                Instance::new(1, Mat4::from_translation(Vec3::new(0.0, 0.0, -5.0))),
-                Instance::new(0, Mat4::from_translation(Vec3::new(10.0, 0.0, 0.0))),
-                Instance::new(0, Mat4::from_translation(Vec3::new(20.0, 0.0, -1.0))),
-                Instance::new(
-                    0,
-                    Mat4::from_translation(Vec3::new(30.0, 0.0, 0.0))
-                        * Mat4::from_scale(Vec3::splat(4.0)),
-                ),
-            ],
-            vec![Material::default()],
-        ));
-        let h = accel.intersect(&down(Vec3::new(0.2, 0.7, 1.0))).unwrap();
-        assert_eq!((h.inst, h.prim), (0, 1));
-        assert!((h.t - 6.0).abs() < 1e-5);
-        let h = accel.intersect(&down(Vec3::new(10.7, 0.2, 1.0))).unwrap();
-        assert_eq!((h.inst, h.prim), (1, 0));
-        assert!((h.t - 1.0).abs() < 1e-5);
-        assert!((h.u - 0.5).abs() < 1e-5 && (h.v - 0.2).abs() < 1e-5);
-        let h = accel.intersect(&down(Vec3::new(20.2, 0.7, 1.0))).unwrap();
-        assert_eq!((h.inst, h.prim), (2, 1));
-        assert!((h.t - 2.0).abs() < 1e-5);
-        // Scaled by 4: (33, 1) is (0.75, 0.25) in object space, triangle 0; t stays in world units.
-        let h = accel.intersect(&down(Vec3::new(33.0, 1.0, 3.0))).unwrap();
-        assert_eq!((h.inst, h.prim), (3, 0));
-        assert!((h.t - 3.0).abs() < 1e-5);
-        assert!(
-            (h.u - 0.5).abs() < 1e-5 && (h.v - 0.25).abs() < 1e-5,
-            "{h:?}"
-        );
-        assert!(accel.intersect(&down(Vec3::new(5.0, 0.5, 1.0))).is_none());
-        assert!(accel.occluded(&Ray::segment(Vec3::new(33.0, 1.0, 3.0), Vec3::NEG_Z, 3.5)));
-        assert!(!accel.occluded(&Ray::segment(Vec3::new(33.0, 1.0, 3.0), Vec3::NEG_Z, 2.5)));
-    }
-
-    #[test]
-    fn alpha_mask_cuts_out() {
-        for (alpha, visible) in [(0.2, false), (0.8, true)] {
-            let mat = Material {
-                alpha_mode: AlphaMode::Mask(0.5),
-                base_color: Vec4::new(1.0, 1.0, 1.0, alpha),
-                ..Default::default()
-            };
-            assert!(mat.needs_alpha_test());
-            // The masked quad in front, used both flattened (inst 0) and instanced (insts 1, 2).
-            let mut masked = quad();
-            masked.material = 1;
+        let blend = Material {
+            alpha_mode: AlphaMode::Blend,
+            base_color: Vec4::new(1.0, 1.0, 1.0, 0.5),
+            ..Default::default()
+        };
+        for mat in [mask(0.2), mask(0.8), blend] {
+            let mut filtered = quad();
+            filtered.material = 1;
             let accel = build(scene_of(
-                vec![quad(), masked.clone(), masked],
+                vec![quad(), filtered.clone(), filtered],
                 vec![
                     Instance::new(1, Mat4::IDENTITY),
                     Instance::new(2, Mat4::from_translation(Vec3::new(10.0, 0.0, 0.0))),
@@ -889,71 +789,25 @@ mod tests {
                 ],
                 vec![Material::default(), mat],
             ));
-            let h = accel.intersect(&down(Vec3::new(0.5, 0.25, 1.0))).unwrap();
-            assert_eq!(h.inst, if visible { 0 } else { 3 }, "alpha {alpha}");
-            for x in [10.5, 20.5] {
-                let ray = down(Vec3::new(x, 0.25, 1.0));
-                assert_eq!(accel.intersect(&ray).is_some(), visible, "alpha {alpha}");
-                assert_eq!(accel.occluded(&ray), visible, "alpha {alpha}");
-            }
-            let shadow = Ray::segment(Vec3::new(0.5, 0.25, 1.0), Vec3::NEG_Z, 1.5);
-            assert_eq!(accel.occluded(&shadow), visible, "alpha {alpha}");
-            // The batch path publishes all rays at once and finds them by ray id.
-            let rays = [down(Vec3::new(10.5, 0.25, 1.0)), shadow];
-            let mut hits = [None; 2];
-            let mut occ = [false; 2];
+            let rays: Vec<Ray> = (0..300)
+                .map(|i| {
+                    let x = (i % 3) as f32 * 10.0 + (i as f32 + 0.5) / 300.0;
+                    let ray = down(Vec3::new(x, 0.9 * x.fract(), 1.0)).with_seed(i * 7919);
+                    if i % 2 == 0 {
+                        ray
+                    } else {
+                        Ray::segment(ray.o, ray.d, 1.5).with_seed(ray.seed)
+                    }
+                })
+                .collect();
+            let mut hits = vec![None; rays.len()];
+            let mut occ = vec![false; rays.len()];
             accel.intersect_batch(&rays, &mut hits);
             accel.occluded_batch(&rays, &mut occ);
-            assert_eq!(hits.map(|h| h.is_some()), [visible; 2]);
-            assert_eq!(occ, [visible; 2]);
-        }
-    }
-
-    /// Blending is stochastic per ray seed: filtered instanced hits must see the world ray's seed.
-    #[test]
-    fn alpha_blend_matches_scene_decision() {
-        let mat = Material {
-            alpha_mode: AlphaMode::Blend,
-            base_color: Vec4::new(1.0, 1.0, 1.0, 0.5),
-            ..Default::default()
-        };
-        let s = Arc::new(scene_of(
-            vec![quad()],
-            vec![
-                Instance::new(0, Mat4::from_translation(Vec3::new(0.0, 0.0, 0.0))),
-                Instance::new(0, Mat4::from_translation(Vec3::new(2.0, 0.0, 0.0))),
-            ],
-            vec![mat],
-        ));
-        let accel = EmbreeAccel::build(Arc::clone(&s)).unwrap();
-        let mut passes = 0;
-        for i in 0..200 {
-            let x = 2.0 + (i as f32 + 0.5) / 200.0;
-            let ray = down(Vec3::new(x, 0.9 * x.fract(), 1.0)).with_seed(i * 7919);
-            let expected = s.alpha_passes(1, 0, 0.0, 0.0, &ray);
-            let h = accel.intersect(&ray);
-            assert_eq!(h.is_some(), expected, "ray {i}");
-            if let Some(h) = h {
-                assert!(s.alpha_passes(h.inst, h.prim, h.u, h.v, &ray));
-                passes += 1;
+            for (i, ray) in rays.iter().enumerate() {
+                assert_eq!(hits[i], accel.intersect(ray), "ray {i}");
+                assert_eq!(occ[i], accel.occluded(ray), "ray {i}");
             }
-            assert_eq!(accel.occluded(&ray), expected, "ray {i}");
-        }
-        assert!(passes > 50 && passes < 150, "{passes} of 200 pass");
-        // Batches find each ray's world ray by ray id, also inside instances.
-        let rays: Vec<Ray> = (0..200)
-            .map(|i| {
-                let x = 2.0 + (i as f32 + 0.5) / 200.0;
-                down(Vec3::new(x, 0.9 * x.fract(), 1.0)).with_seed(i * 7919)
-            })
-            .collect();
-        let mut hits = vec![None; rays.len()];
-        let mut occ = vec![false; rays.len()];
-        accel.intersect_batch(&rays, &mut hits);
-        accel.occluded_batch(&rays, &mut occ);
-        for (i, ray) in rays.iter().enumerate() {
-            assert_eq!(hits[i], accel.intersect(ray), "ray {i}");
-            assert_eq!(occ[i], accel.occluded(ray), "ray {i}");
         }
     }
 

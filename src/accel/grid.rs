@@ -18,15 +18,16 @@ use std::sync::Arc;
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::flat::{flatten, TriId};
-use super::motion::MovingSet;
-use super::objects::ObjectBvh;
-use super::Accel;
+use super::flat::TriId;
+use super::layered::{Layered, Triangles};
 use crate::geometry::triangle::{self, RayShear, Tri4};
-use crate::geometry::{gamma, Aabb, Hit, Ray};
+use crate::geometry::{Aabb, Hit, Ray};
 use crate::scene::Scene;
 
-/// Cells per triangle the resolution aims at (measured: see `GridAccel::build_with`).
+/// The `grid` backend: the grid over the static triangles, then moving instances and CSG objects.
+pub type GridAccel = Layered<Grid>;
+
+/// Cells per triangle the resolution aims at (measured: see `GridAccel::build_lambda`).
 pub const DEFAULT_LAMBDA: f32 = 0.5;
 /// Most cells along one axis.
 pub const MAX_CELLS_PER_AXIS: u32 = 512;
@@ -37,8 +38,8 @@ const MAILBOX: usize = 64;
 /// Triangles whose box spans more cells than this are checked against each cell's box by their plane.
 const PLANE_TEST_MIN_CELLS: usize = 2;
 
-pub struct GridAccel {
-    scene: Arc<Scene>,
+/// The uniform grid over a set of triangles.
+pub struct Grid {
     /// World-space vertices, by triangle index (build input only: emptied once the cells are packed).
     tris: Vec<[Vec3; 3]>,
     ids: Vec<TriId>,
@@ -59,40 +60,27 @@ pub struct GridAccel {
     lanes: Vec<[u32; 4]>,
     /// Triangle references over all cells.
     entries: usize,
-    /// The scene's CSG objects, tested after the triangles.
-    objects: ObjectBvh,
-    /// Instances that move during the shutter (absent for static scenes).
-    moving: Option<Box<MovingSet>>,
 }
 
 impl GridAccel {
-    pub fn build(scene: Arc<Scene>) -> Self {
-        Self::build_with(scene, DEFAULT_LAMBDA)
-    }
-
     /// Builds with `lambda` cells per triangle (before clamping). With cells tested four triangles
     /// at a time, 0.25 to 1 is the sweet spot (`examples/grid_bench`: 0.5 is 1.4x as fast as 3 on
     /// an icosphere and 1.3x on the bunny): fewer cells hold more triangles each, more cells cost
     /// more steps of the walk (mostly through empty cells) and memory.
-    pub fn build_with(scene: Arc<Scene>, lambda: f32) -> Self {
-        let moving = MovingSet::build(&scene).map(Box::new);
-        Self {
-            moving,
-            ..Self::build_static(scene, lambda)
-        }
+    pub fn build_lambda(scene: Arc<Scene>, lambda: f32) -> Self {
+        Self::build_with(scene, |_, tris, ids| Grid::new(tris, ids, lambda))
     }
+}
 
-    /// The grid over the static instances' world-space triangles.
-    fn build_static(scene: Arc<Scene>, lambda: f32) -> Self {
-        let (tris, ids) = flatten(&scene);
+impl Grid {
+    /// The grid over these world-space triangles, with `lambda` cells per triangle.
+    pub fn new(tris: Vec<[Vec3; 3]>, ids: Vec<TriId>, lambda: f32) -> Self {
         let bounds = tris
             .par_iter()
             .map(|t| Aabb::from_points(*t))
             .reduce(|| Aabb::EMPTY, Aabb::union);
         if tris.is_empty() || bounds.is_empty() {
             return Self {
-                objects: ObjectBvh::build(&scene.csg),
-                scene,
                 tris,
                 ids,
                 min: Vec3::ZERO,
@@ -105,7 +93,6 @@ impl GridAccel {
                 packets: Vec::new(),
                 lanes: Vec::new(),
                 entries: 0,
-                moving: None,
             };
         }
         // Rounding of crossings and hit points is a few float spacings of the coordinates involved:
@@ -121,8 +108,6 @@ impl GridAccel {
         let cell_size = extent / resf;
         let inv_cell_size = Vec3::select(extent.cmpgt(Vec3::ZERO), resf / extent, Vec3::ZERO);
         let mut grid = Self {
-            objects: ObjectBvh::build(&scene.csg),
-            scene,
             tris,
             ids,
             min,
@@ -135,7 +120,6 @@ impl GridAccel {
             packets: Vec::new(),
             lanes: Vec::new(),
             entries: 0,
-            moving: None,
         };
         grid.fill();
         grid
@@ -292,7 +276,6 @@ impl GridAccel {
             + self.offsets.len() * 4
             + self.packets.len() * std::mem::size_of::<Tri4>()
             + self.lanes.len() * std::mem::size_of::<[u32; 4]>()
-            + self.moving.as_ref().map_or(0, |m| m.memory_bytes())
     }
 
     /// Ray parameter where the ray crosses boundary `k` of `axis` (computed the same way everywhere).
@@ -305,31 +288,20 @@ impl GridAccel {
     /// (Negated comparisons are deliberate: a NaN distance or limit ends the walk.)
     #[inline(always)]
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
-    fn traverse(&self, ray: &Ray, any: bool) -> Option<Hit> {
+    fn traverse(&self, scene: &Scene, ray: &Ray, any: bool) -> Option<Hit> {
         if self.packets.is_empty() {
             return None;
         }
         let o = ray.o.to_array();
         let d = ray.d.to_array();
-        let inv = ray.d.recip().to_array();
-        // Clip the segment to the grid box (conservative, as the BVH's slab test). A NaN distance
-        // (0 * inf: a ray in a face plane, parallel to it) leaves the interval as it was.
-        let far_scale = 1.0 + 2.0 * gamma(3);
-        let (mut t0, mut t1) = (ray.t_min, ray.t_max);
-        for a in 0..3 {
-            let (near, far) = if inv[a] < 0.0 {
-                (self.max[a], self.min[a])
-            } else {
-                (self.min[a], self.max[a])
-            };
-            let tn = (near - o[a]) * inv[a];
-            let tf = (far - o[a]) * inv[a] * far_scale;
-            t0 = if tn > t0 { tn } else { t0 };
-            t1 = if tf < t1 { tf } else { t1 };
-        }
-        if !(t0 <= t1) {
-            return None;
-        }
+        let inv_d = ray.d.recip();
+        let inv = inv_d.to_array();
+        // Clip the segment to the grid box (conservative, as the BVH's slab test).
+        let bounds = Aabb {
+            min: self.min,
+            max: self.max,
+        };
+        let (t0, t1) = bounds.clip(ray.o, inv_d, ray.t_min, ray.t_max)?;
         // The start cell, chosen consistently with the crossings that the walk computes.
         let mut cell = [0i32; 3];
         let mut step = [0i32; 3];
@@ -399,7 +371,7 @@ impl GridAccel {
                         continue;
                     }
                     let tid = self.ids[lanes[lane] as usize];
-                    if !tid.accepts(&self.scene, h.u[lane], h.v[lane], ray) {
+                    if !tid.accepts(scene, h.u[lane], h.v[lane], ray) {
                         continue;
                     }
                     let hit = Hit {
@@ -482,37 +454,21 @@ fn resolution(extent: Vec3, n: usize, lambda: f32) -> [u32; 3] {
     res
 }
 
-impl GridAccel {
-    /// The backend's answer: its own triangles, then the moving instances.
+impl Triangles for Grid {
+    const NAME: &'static str = "grid";
+
+    fn build(_: &Scene, tris: Vec<[Vec3; 3]>, ids: Vec<TriId>) -> Self {
+        Self::new(tris, ids, DEFAULT_LAMBDA)
+    }
+
     #[inline]
-    fn query(&self, ray: &Ray, any: bool) -> Option<Hit> {
-        let hit = self.traverse(ray, any);
-        match &self.moving {
-            None => hit,
-            Some(m) => m.intersect(&self.scene, ray, hit, any),
-        }
-    }
-}
-
-impl Accel for GridAccel {
-    fn name(&self) -> &'static str {
-        "grid"
+    fn intersect(&self, scene: &Scene, ray: &Ray) -> Option<Hit> {
+        self.traverse(scene, ray, false)
     }
 
-    fn intersect(&self, ray: &Ray) -> Option<Hit> {
-        // Decided before the walk, so the walk of a scene without CSG compiles as it did before
-        // (testing after it cost 5% on coherent rays).
-        if self.objects.is_empty() {
-            return self.query(ray, false);
-        }
-        let best = self.query(ray, false);
-        self.objects
-            .intersect(&self.scene.csg, ray, best, crate::geometry::CSG_BIT)
-    }
-
-    fn occluded(&self, ray: &Ray) -> bool {
-        self.query(ray, true).is_some()
-            || (!self.objects.is_empty() && self.objects.occluded(&self.scene.csg, ray))
+    #[inline]
+    fn occluded(&self, scene: &Scene, ray: &Ray) -> bool {
+        self.traverse(scene, ray, true).is_some()
     }
 
     fn memory_bytes(&self) -> usize {
@@ -522,139 +478,28 @@ impl Accel for GridAccel {
 
 #[cfg(test)]
 mod tests {
+    // Queries are tested with every backend's in `accel::conformance`.
     use super::*;
-    use crate::accel::testing::{brute, rng, scene};
-    use crate::scene::{generate, Instance, Mesh};
+    use crate::accel::testing::scene;
+    use crate::accel::Accel;
+    use crate::scene::{generate, Instance};
     use glam::Mat4;
 
-    /// The grid's answers for `ray` against brute force: same distance bits; the same triangle, or
-    /// another at exactly the same distance.
-    fn check(g: &GridAccel, s: &Scene, ray: &Ray) -> bool {
-        let want = brute(s, ray);
-        let got = g.intersect(ray);
-        match (got, want) {
-            (None, None) => {}
-            (Some(h), Some(w)) => assert_eq!(h.t.to_bits(), w.0.to_bits(), "ray {ray:?}"),
-            _ => panic!("ray {ray:?}: grid {got:?}, brute force {want:?}"),
-        }
-        assert_eq!(g.occluded(ray), want.is_some(), "occluded, ray {ray:?}");
-        want.is_some()
-    }
-
     #[test]
-    fn matches_brute_force_on_random_rays() {
-        let s = scene(
-            vec![generate::quad_grid(40), generate::icosphere(3, 0.1)],
-            vec![
-                Instance::new(0, Mat4::IDENTITY),
-                Instance::new(
-                    0,
-                    Mat4::from_rotation_x(0.7) * Mat4::from_translation(Vec3::new(-5.0, 3.0, 4.0)),
-                ),
-                Instance::new(
-                    1,
-                    Mat4::from_translation(Vec3::new(20.0, 20.0, 3.0))
-                        * Mat4::from_scale(Vec3::splat(4.0)),
-                ),
-            ],
-        );
-        for lambda in [0.5, DEFAULT_LAMBDA, 8.0] {
-            let g = GridAccel::build_with(s.clone(), lambda);
-            assert!(g.cell_count() > 1);
-            let mut next = rng(0x1234_5678);
-            let mut hits = 0;
-            for _ in 0..10_000 {
-                let o = Vec3::new(
-                    next() * 50.0 - 5.0,
-                    next() * 50.0 - 5.0,
-                    20.0 * next() - 5.0,
-                );
-                let d = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize();
-                hits += check(&g, &s, &Ray::new(o, d)) as u32;
-            }
-            assert!(hits > 1000, "test rays should hit often, hit {hits}");
-        }
-    }
-
-    #[test]
-    fn axis_parallel_rays() {
-        let s = scene(
-            vec![generate::quad_grid(16), generate::icosphere(2, 0.0)],
-            vec![
-                Instance::new(0, Mat4::IDENTITY),
-                Instance::new(
-                    1,
-                    Mat4::from_translation(Vec3::new(8.0, 8.0, 2.0))
-                        * Mat4::from_scale(Vec3::splat(3.0)),
-                ),
-            ],
-        );
-        let g = GridAccel::build(s.clone());
-        // Through every vertex of the plane (cell corners of a flat grid), and along every axis
-        // from inside and outside, both signs, including -0.0 components.
-        for y in 0..=16 {
-            for x in 0..=16 {
-                let r = Ray::new(
-                    Vec3::new(x as f32, y as f32, 30.0),
-                    Vec3::new(-0.0, 0.0, -1.0),
-                );
-                assert!(check(&g, &s, &r));
-            }
-        }
-        let mut next = rng(99);
-        for _ in 0..3000 {
-            let o = Vec3::new(next() * 20.0 - 2.0, next() * 20.0 - 2.0, next() * 8.0 - 2.0);
-            for d in [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z] {
-                check(&g, &s, &Ray::new(o, d));
-            }
-            // Along the plane itself, and diagonals in axis planes (two zero components).
-            let d = Vec3::new(next() - 0.5, next() - 0.5, 0.0).normalize();
-            check(&g, &s, &Ray::new(Vec3::new(o.x, o.y, 0.0), d));
-            check(&g, &s, &Ray::new(o, d));
-        }
-    }
-
-    #[test]
-    fn empty_scene_and_segment_limits() {
+    fn empty_and_flat_scenes_get_degenerate_grids() {
         let g = GridAccel::build(scene(vec![], vec![]));
-        assert!(g.intersect(&Ray::new(Vec3::ZERO, Vec3::Z)).is_none());
-        assert!(!g.occluded(&Ray::new(Vec3::ZERO, Vec3::Z)));
-        assert_eq!(g.entry_count(), 0);
-        let g = GridAccel::build(scene(
-            vec![Mesh::default()],
-            vec![Instance::new(0, Mat4::IDENTITY)],
-        ));
-        assert!(g.intersect(&Ray::new(Vec3::ZERO, Vec3::Z)).is_none());
-
+        assert_eq!(g.statics().entry_count(), 0);
         let s = scene(
             vec![generate::quad_grid(8)],
             vec![Instance::new(0, Mat4::IDENTITY)],
         );
-        let g = GridAccel::build(s.clone());
-        assert_eq!(g.resolution()[2], 1, "a flat scene gets one cell across");
-        let down = Ray::new(Vec3::new(0.5, 0.3, 1.0), -Vec3::Z);
-        assert!((g.intersect(&down).unwrap().t - 1.0).abs() < 1e-6);
-        assert!(!g.occluded(&Ray::segment(down.o, down.d, 0.99)));
-        assert!(g.occluded(&Ray::segment(down.o, down.d, 1.01)));
-        assert!(g
-            .intersect(&Ray {
-                t_min: 1.01,
-                ..down
-            })
-            .is_none());
-        // Segments of rays running over many cells, against brute force.
-        let mut next = rng(7);
-        for _ in 0..5000 {
-            let o = Vec3::new(next() * 12.0 - 2.0, next() * 12.0 - 2.0, next() * 4.0 - 2.0);
-            let d = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize();
-            let (a, b) = (next() * 10.0, next() * 10.0);
-            let ray = Ray {
-                t_min: a.min(b),
-                t_max: a.max(b),
-                ..Ray::new(o, d)
-            };
-            check(&g, &s, &ray);
-        }
+        let g = GridAccel::build(s);
+        assert_eq!(
+            g.statics().resolution()[2],
+            1,
+            "a flat scene gets one cell across"
+        );
+        assert!(g.statics().cell_count() > 1);
         // Rays that are no rays: NaN and zero directions, NaN limits.
         for ray in [
             Ray::new(Vec3::new(1.0, 1.0, 1.0), Vec3::ZERO),
@@ -663,47 +508,6 @@ mod tests {
         ] {
             assert!(g.intersect(&ray).is_none());
         }
-    }
-
-    #[test]
-    fn small_detailed_model_inside_a_large_room() {
-        // A 5k-triangle sphere of radius 0.01 in a room a thousand times larger: the cells are
-        // much larger than the sphere's triangles, which all crowd into a few cells.
-        let s = scene(
-            vec![
-                generate::box_mesh(Vec3::splat(-10.0), Vec3::splat(10.0)),
-                generate::icosphere(4, 0.05),
-            ],
-            vec![
-                Instance::new(0, Mat4::IDENTITY),
-                Instance::new(
-                    1,
-                    Mat4::from_translation(Vec3::new(1.0, -2.0, 0.5))
-                        * Mat4::from_scale(Vec3::splat(0.01)),
-                ),
-            ],
-        );
-        let g = GridAccel::build(s.clone());
-        let mut next = rng(3);
-        let mut sphere_hits = 0;
-        for i in 0..20_000 {
-            let o = Vec3::new(
-                next() * 18.0 - 9.0,
-                next() * 18.0 - 9.0,
-                next() * 18.0 - 9.0,
-            );
-            let target = Vec3::new(1.0, -2.0, 0.5)
-                + 0.012 * Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5);
-            let d = if i % 2 == 0 {
-                (target - o).normalize()
-            } else {
-                Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize()
-            };
-            let ray = Ray::new(o, d);
-            assert!(check(&g, &s, &ray), "the room is closed: every ray hits");
-            sphere_hits += (g.intersect(&ray).unwrap().inst == 1) as u32;
-        }
-        assert!(sphere_hits > 5000, "{sphere_hits}");
     }
 
     #[test]

@@ -161,16 +161,10 @@ impl ObjectList {
         }
         if self.pretests.boxes {
             tally.box_tests += 1;
-            let t0 = (o.bounds.min - ray.o) * inv_d;
-            let t1 = (o.bounds.max - ray.o) * inv_d;
-            // Ize's conservative slabs: widen the far distance by the rounding of the subtraction
-            // and product.
-            let near = t0.min(t1).max_element().max(ray.t_min);
-            let far = t0.max(t1).min_element() * (1.0 + 2.0 * gamma(3));
-            if near > far || far < ray.t_min || near.is_nan() || far.is_nan() {
+            let Some((near, _)) = o.bounds.clip(ray.o, inv_d, ray.t_min, f32::INFINITY) else {
                 tally.box_rejects += 1;
                 return None;
-            }
+            };
             entry = entry.max(near);
         }
         Some(entry)
@@ -315,10 +309,10 @@ mod tests {
             let mut hits = 0;
             for ray in &rays {
                 let want = brute(&s, ray);
-                let got = list.intersect(ray).map(|h| (h.t, h.inst, h.prim));
+                let got = list.intersect(ray);
                 assert_eq!(
-                    got.map(|g| g.0.to_bits()),
-                    want.map(|w| w.0.to_bits()),
+                    got.map(|g| g.t.to_bits()),
+                    want.map(|w| w.t.to_bits()),
                     "{p:?} {ray:?}"
                 );
                 assert_eq!(list.occluded(ray), want.is_some());

@@ -1,12 +1,17 @@
 //! Ray queries over a Scene's triangles: one `Accel` trait (closest hit, any hit) and its backends.
-//! `bvh` is pure Rust; `embree` wraps Intel Embree 4. Both return the same hits for the same rays.
+//! `embree` wraps Intel Embree 4; the Rust backends (`bvh`, `grid`, `obvhs`) are each a triangle
+//! structure in the one `layered` composition. All return the same hits for the same rays
+//! (`conformance` holds the tests every backend must pass).
 
 pub mod bvh;
 pub mod compare;
+#[cfg(test)]
+mod conformance;
 #[cfg(feature = "embree")]
 pub mod embree;
 pub mod flat;
 pub mod grid;
+pub mod layered;
 pub mod list;
 pub mod motion;
 pub mod objects;
@@ -103,21 +108,17 @@ pub enum AccelError {
     ObvhsUnavailable,
     #[error("embree: {0}")]
     Embree(String),
-    #[error("the {0} backend does not support CSG objects (use --backend bvh, grid or embree)")]
-    CsgUnsupported(&'static str),
 }
 
 /// Builds the chosen backend over the scene's instances and CSG objects.
 pub fn build(scene: Arc<Scene>, backend: Backend) -> Result<Box<dyn Accel>, AccelError> {
     match backend {
-        Backend::Bvh => Ok(Box::new(bvh::Bvh::build(scene))),
+        Backend::Bvh => Ok(Box::new(bvh::BvhAccel::build(scene))),
         Backend::Grid => Ok(Box::new(grid::GridAccel::build(scene))),
         #[cfg(feature = "embree")]
         Backend::Embree => Ok(Box::new(embree::EmbreeAccel::build(scene)?)),
         #[cfg(not(feature = "embree"))]
         Backend::Embree => Err(AccelError::EmbreeUnavailable),
-        #[cfg(feature = "obvhs")]
-        Backend::Obvhs if !scene.csg.is_empty() => Err(AccelError::CsgUnsupported("obvhs")),
         #[cfg(feature = "obvhs")]
         Backend::Obvhs => Ok(Box::new(obvhs::ObvhsAccel::build(scene))),
         #[cfg(not(feature = "obvhs"))]

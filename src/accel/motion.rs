@@ -7,15 +7,14 @@
 //! backend over a scene without motion holds no `MovingSet` at all. The backends call it after their
 //! own traversal with the closest static hit so far (the same shape of call that CSG objects take).
 
-use std::sync::Arc;
-
 use super::bvh::Bvh;
 use super::flat::TriId;
-use super::Accel;
-use crate::geometry::{gamma, Aabb, Hit, Ray};
+use super::layered::Triangles;
+use crate::geometry::{Aabb, Hit, Ray};
 use crate::scene::Scene;
 
-/// One moving instance: its bounds over the whole shutter and its triangles in object space.
+/// One moving instance: its bounds over the whole shutter and a bare BVH over its triangles in object
+/// space.
 struct Moving {
     inst: u32,
     bounds: Aabb,
@@ -29,7 +28,7 @@ pub struct MovingSet {
 
 impl MovingSet {
     /// The moving instances of `scene`, or None when nothing moves.
-    pub fn build(scene: &Arc<Scene>) -> Option<Self> {
+    pub fn build(scene: &Scene) -> Option<Self> {
         let items: Vec<Moving> = scene
             .instances
             .iter()
@@ -47,7 +46,7 @@ impl MovingSet {
                 Some(Moving {
                     inst: i as u32,
                     bounds: motion.bounds(&mesh.bounds()),
-                    bvh: Bvh::from_triangles(Arc::clone(scene), tris, ids),
+                    bvh: Bvh::new(tris, ids),
                 })
             })
             .collect();
@@ -75,9 +74,10 @@ impl MovingSet {
             return best;
         }
         let mut best = best;
+        let inv = ray.d.recip();
         for m in &self.items {
             let t_max = best.map_or(ray.t_max, |h| h.t);
-            if !hits_box(&m.bounds, ray, t_max) {
+            if m.bounds.clip(ray.o, inv, ray.t_min, t_max).is_none() {
                 continue;
             }
             let to_world = scene.instances[m.inst as usize].to_world_at(ray.time);
@@ -89,7 +89,7 @@ impl MovingSet {
                 t_max,
                 ..*ray
             };
-            if let Some(h) = m.bvh.traverse_object(&local, any) {
+            if let Some(h) = m.bvh.traverse(scene, &local, any) {
                 best = Some(h);
                 if any {
                     break;
@@ -97,92 +97,5 @@ impl MovingSet {
             }
         }
         best
-    }
-}
-
-/// Whether the ray's segment `(t_min, t_max)` touches the box (conservative slab test; an axis the
-/// ray runs parallel to only checks that the origin is within the slab).
-fn hits_box(b: &Aabb, ray: &Ray, t_max: f32) -> bool {
-    let (mut enter, mut exit) = (ray.t_min, t_max);
-    for axis in 0..3 {
-        let (o, d) = (ray.o[axis], ray.d[axis]);
-        if d == 0.0 {
-            if o < b.min[axis] || o > b.max[axis] {
-                return false;
-            }
-            continue;
-        }
-        let inv = 1.0 / d;
-        let (t0, t1) = ((b.min[axis] - o) * inv, (b.max[axis] - o) * inv);
-        let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
-        enter = enter.max(near);
-        exit = exit.min(far * (1.0 + 2.0 * gamma(3)));
-    }
-    enter <= exit
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::geometry::Motion;
-    use crate::scene::{generate, Instance};
-    use glam::{Mat4, Vec3};
-
-    #[test]
-    fn a_moving_box_is_hit_where_it_is_at_the_ray_time() {
-        let mesh = generate::box_mesh(Vec3::splat(-0.5), Vec3::splat(0.5));
-        let mut inst = Instance::new(0, Mat4::IDENTITY);
-        inst.motion = Some(Motion {
-            steps: vec![
-                Mat4::IDENTITY,
-                Mat4::from_translation(Vec3::new(4.0, 0.0, 0.0)),
-            ],
-        });
-        let scene = Arc::new(generate::scene_of(vec![mesh], vec![inst]));
-        let set = MovingSet::build(&scene).unwrap();
-        for (time, x, hit) in [
-            (0.0, 0.0, true),
-            (0.0, 2.0, false),
-            (0.5, 2.0, true),
-            (1.0, 4.3, true),
-            (1.0, 0.0, false),
-        ] {
-            let ray = Ray::new(Vec3::new(x, 0.0, 5.0), -Vec3::Z).with_time(time);
-            let h = set.intersect(&scene, &ray, None, false);
-            assert_eq!(h.is_some(), hit, "time {time}, x {x}");
-            if let Some(h) = h {
-                assert!((h.t - 4.5).abs() < 1e-5, "{}", h.t);
-            }
-            assert_eq!(set.intersect(&scene, &ray, None, true).is_some(), hit);
-        }
-    }
-
-    #[test]
-    fn box_test_keeps_rays_along_a_face() {
-        let b = Aabb {
-            min: Vec3::ZERO,
-            max: Vec3::ONE,
-        };
-        // Parallel to x and z, exactly on the y = 0 face: inside the slab, so kept.
-        assert!(hits_box(
-            &b,
-            &Ray::new(Vec3::new(-1.0, 0.0, 0.5), Vec3::X),
-            f32::INFINITY
-        ));
-        assert!(!hits_box(
-            &b,
-            &Ray::new(Vec3::new(-1.0, -0.01, 0.5), Vec3::X),
-            f32::INFINITY
-        ));
-        assert!(!hits_box(
-            &b,
-            &Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::X),
-            0.5
-        ));
-        assert!(hits_box(
-            &b,
-            &Ray::new(Vec3::new(-1.0, 0.5, 0.5), Vec3::X),
-            1.5
-        ));
     }
 }

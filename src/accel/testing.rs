@@ -2,9 +2,10 @@
 //! Compiled only for tests.
 
 use crate::geometry::triangle::{self, RayShear};
-use crate::geometry::Ray;
+use crate::geometry::{Hit, Ray};
 use std::sync::Arc;
 
+use super::Accel;
 use crate::scene::{generate, Instance, Mesh, Scene};
 
 /// A shared scene of the meshes and instances, with the default material.
@@ -12,21 +13,44 @@ pub fn scene(meshes: Vec<Mesh>, instances: Vec<Instance>) -> Arc<Scene> {
     Arc::new(generate::scene_of(meshes, instances))
 }
 
-/// Brute force over every triangle: (t, instance, primitive) of the closest hit, the reference the
-/// Rust backends must match exactly (they use the same triangle test).
-pub fn brute(s: &Scene, ray: &Ray) -> Option<(f32, u32, u32)> {
+/// Brute force over every triangle of every instance (static, opaque): the closest hit, the
+/// reference the Rust backends must match exactly (they use the same triangle test).
+pub fn brute(s: &Scene, ray: &Ray) -> Option<Hit> {
     let sh = RayShear::new(ray.d);
-    let mut best: Option<(f32, u32, u32)> = None;
+    let mut best: Option<Hit> = None;
     for (i, inst) in s.instances.iter().enumerate() {
         for p in 0..s.meshes[inst.mesh as usize].indices.len() as u32 {
             let [a, b, c] = s.world_triangle(i as u32, p);
-            let t_max = best.map_or(ray.t_max, |b| b.0);
+            let t_max = best.map_or(ray.t_max, |b| b.t);
             if let Some(h) = triangle::intersect(ray.o, &sh, a, b, c, ray.t_min, t_max) {
-                best = Some((h.t, i as u32, p));
+                best = Some(Hit {
+                    t: h.t,
+                    u: h.u,
+                    v: h.v,
+                    inst: i as u32,
+                    prim: p,
+                });
             }
         }
     }
     best
+}
+
+/// `brute` as an accelerator, for `compare::compare`.
+pub struct Brute(pub Arc<Scene>);
+
+impl Accel for Brute {
+    fn name(&self) -> &'static str {
+        "brute force"
+    }
+
+    fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        brute(&self.0, ray)
+    }
+
+    fn occluded(&self, ray: &Ray) -> bool {
+        brute(&self.0, ray).is_some()
+    }
 }
 
 /// Uniform numbers in [0, 1) from a xorshift generator.

@@ -4,6 +4,7 @@
 
 use glam::Vec3;
 
+use crate::geometry::median::{MedianBvh, Node};
 use crate::geometry::triangle::{self, RayShear};
 use crate::geometry::Aabb;
 
@@ -12,21 +13,13 @@ use crate::geometry::Aabb;
 pub const MAX_CROSSINGS: usize = 2 * super::CAPACITY;
 const LEAF_SIZE: usize = 4;
 
-/// A node: bounds and two children (`count == 0`, left at `index`) or `count` triangles from `index`.
-#[derive(Clone, Copy, Debug)]
-struct MNode {
-    bounds: Aabb,
-    index: u32,
-    count: u32,
-}
-
 /// A closed (every edge shared by exactly two triangles) triangle mesh in object space.
 #[derive(Debug)]
 pub struct SolidMesh {
     pub name: String,
     /// The triangles, reordered into the BVH's leaf order (surface ids name them by this order).
     tris: Vec<[Vec3; 3]>,
-    nodes: Vec<MNode>,
+    nodes: Vec<Node>,
     bounds: Aabb,
 }
 
@@ -68,12 +61,13 @@ impl SolidMesh {
             .iter()
             .map(|t| t.map(|i| positions[i as usize]))
             .collect();
-        let mut nodes = vec![MNode {
-            bounds: Aabb::EMPTY,
-            index: 0,
-            count: 0,
-        }];
-        build(&mut tris, 0, 0, &mut nodes);
+        let nodes = MedianBvh::build(
+            &mut tris,
+            LEAF_SIZE,
+            |run| Aabb::from_points(run.iter().flatten().copied()),
+            |t| (t[0] + t[1] + t[2]) / 3.0,
+        )
+        .nodes;
         Ok(Self {
             name: name.to_string(),
             bounds: nodes[0].bounds,
@@ -127,7 +121,11 @@ impl SolidMesh {
         while sp > 0 {
             sp -= 1;
             let node = self.nodes[stack[sp] as usize];
-            if !line_hits(&node.bounds, o, inv) {
+            if node
+                .bounds
+                .clip(o, inv, f32::NEG_INFINITY, f32::INFINITY)
+                .is_none()
+            {
                 continue;
             }
             if node.count == 0 {
@@ -170,53 +168,4 @@ impl SolidMesh {
         }
         (m, overflow)
     }
-}
-
-/// Whether the whole line meets the box.
-fn line_hits(b: &Aabb, o: Vec3, inv: Vec3) -> bool {
-    let far_scale = 1.0 + 2.0 * crate::geometry::gamma(3);
-    let (mut t0, mut t1) = (f32::NEG_INFINITY, f32::INFINITY);
-    for a in 0..3 {
-        let (lo, hi) = ((b.min[a] - o[a]) * inv[a], (b.max[a] - o[a]) * inv[a]);
-        let (near, far) = if inv[a] < 0.0 { (hi, lo) } else { (lo, hi) };
-        let (near, far) = (near - near.abs() * (far_scale - 1.0), far * far_scale);
-        t0 = if near > t0 { near } else { t0 };
-        t1 = if far < t1 { far } else { t1 };
-    }
-    t0 <= t1
-}
-
-/// Median-split BVH over `tris[..]` (reordered in place), whose first triangle has index `base`.
-fn build(tris: &mut [[Vec3; 3]], base: u32, at: usize, nodes: &mut Vec<MNode>) {
-    let bounds = Aabb::from_points(tris.iter().flatten().copied());
-    if tris.len() <= LEAF_SIZE {
-        nodes[at] = MNode {
-            bounds,
-            index: base,
-            count: tris.len() as u32,
-        };
-        return;
-    }
-    let centre = |t: &[Vec3; 3]| (t[0] + t[1] + t[2]) / 3.0;
-    let axis = Aabb::from_points(tris.iter().map(centre))
-        .extent()
-        .max_position();
-    let mid = tris.len() / 2;
-    tris.select_nth_unstable_by(mid, |a, b| centre(a)[axis].total_cmp(&centre(b)[axis]));
-    let l = nodes.len();
-    let blank = MNode {
-        bounds: Aabb::EMPTY,
-        index: 0,
-        count: 0,
-    };
-    nodes.push(blank);
-    nodes.push(blank);
-    nodes[at] = MNode {
-        bounds,
-        index: l as u32,
-        count: 0,
-    };
-    let (left, right) = tris.split_at_mut(mid);
-    build(left, base, l, nodes);
-    build(right, base + mid as u32, l + 1, nodes);
 }

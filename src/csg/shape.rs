@@ -166,23 +166,10 @@ impl Shape {
                 let (min, max) = (min.as_dvec3(), max.as_dvec3());
                 let (mut t0, mut t1, mut f0, mut f1) = (f64::NEG_INFINITY, f64::INFINITY, 0, 0);
                 for a in 0..3 {
-                    if d[a] == 0.0 {
-                        if o[a] < min[a] || o[a] > max[a] {
-                            return Spans::default();
-                        }
-                        continue;
-                    }
-                    let (mut ta, mut tb) = ((min[a] - o[a]) / d[a], (max[a] - o[a]) / d[a]);
-                    let (mut fa, mut fb) = (2 * a as u32, 2 * a as u32 + 1);
-                    if ta > tb {
-                        std::mem::swap(&mut ta, &mut tb);
-                        std::mem::swap(&mut fa, &mut fb);
-                    }
-                    if ta > t0 {
-                        (t0, f0) = (ta, fa);
-                    }
-                    if tb < t1 {
-                        (t1, f1) = (tb, fb);
+                    let faces = (2 * a as u32, 2 * a as u32 + 1);
+                    let slab = (min[a], max[a], faces);
+                    if !clip_slab(o[a], d[a], slab, (&mut t0, &mut f0), (&mut t1, &mut f1)) {
+                        return Spans::default();
                     }
                 }
                 one(t0, f0, t1, f1)
@@ -203,23 +190,9 @@ impl Shape {
                         None => return Spans::default(),
                     }
                 }
-                if d.y == 0.0 {
-                    if o.y.abs() > h2 {
-                        return Spans::default();
-                    }
-                } else {
-                    let (mut ta, mut tb) = ((-h2 - o.y) / d.y, (h2 - o.y) / d.y);
-                    let (mut fa, mut fb) = (BOTTOM, TOP);
-                    if ta > tb {
-                        std::mem::swap(&mut ta, &mut tb);
-                        std::mem::swap(&mut fa, &mut fb);
-                    }
-                    if ta > t0 {
-                        (t0, f0) = (ta, fa);
-                    }
-                    if tb < t1 {
-                        (t1, f1) = (tb, fb);
-                    }
+                let slab = (-h2, h2, (BOTTOM, TOP));
+                if !clip_slab(o.y, d.y, slab, (&mut t0, &mut f0), (&mut t1, &mut f1)) {
+                    return Spans::default();
                 }
                 one(t0, f0, t1, f1)
             }
@@ -527,6 +500,34 @@ fn largest_cubic_root(a: f64, b: f64, c: f64) -> f64 {
         m -= step;
     }
     m
+}
+
+/// Narrows the span from `(t0, f0)` to `(t1, f1)` (distances and faces) of the line `o + t d`, along
+/// one axis, to the slab `(lo, hi, (face at lo, face at hi))`; false when the line runs parallel to
+/// the slab outside it.
+fn clip_slab(
+    o: f64,
+    d: f64,
+    (lo, hi, (face_lo, face_hi)): (f64, f64, (u32, u32)),
+    (t0, f0): (&mut f64, &mut u32),
+    (t1, f1): (&mut f64, &mut u32),
+) -> bool {
+    if d == 0.0 {
+        return !(o < lo || o > hi);
+    }
+    let (mut ta, mut tb) = ((lo - o) / d, (hi - o) / d);
+    let (mut fa, mut fb) = (face_lo, face_hi);
+    if ta > tb {
+        std::mem::swap(&mut ta, &mut tb);
+        std::mem::swap(&mut fa, &mut fb);
+    }
+    if ta > *t0 {
+        (*t0, *f0) = (ta, fa);
+    }
+    if tb < *t1 {
+        (*t1, *f1) = (tb, fb);
+    }
+    true
 }
 
 #[cfg(test)]

@@ -140,29 +140,33 @@ proptest! {
     #[test]
     fn de_morgan(a in list(), b in list(), c in list()) {
         // A - (B u C) = (A - B) n (A - C), and A - (B n C) = (A - B) u (A - C).
-        let bc = Intervals::combine(Op::Union, &b, &c, tol);
-        let lhs = Intervals::combine(Op::Difference, &a, &bc, tol);
-        let rhs = Intervals::combine(
-            Op::Intersection,
-            &Intervals::combine(Op::Difference, &a, &b, tol),
-            &Intervals::combine(Op::Difference, &a, &c, tol),
-            tol,
-        );
-        prop_assert!(same(&lhs, &rhs), "{:?} vs {:?}", spans(&lhs), spans(&rhs));
-        let bc = Intervals::combine(Op::Intersection, &b, &c, tol);
-        let lhs = Intervals::combine(Op::Difference, &a, &bc, tol);
-        let rhs = Intervals::combine(
-            Op::Union,
-            &Intervals::combine(Op::Difference, &a, &b, tol),
-            &Intervals::combine(Op::Difference, &a, &c, tol),
-            tol,
-        );
-        prop_assert!(same(&lhs, &rhs), "{:?} vs {:?}", spans(&lhs), spans(&rhs));
+        for (inner, outer) in [(Op::Union, Op::Intersection), (Op::Intersection, Op::Union)] {
+            let bc = Intervals::combine(inner, &b, &c, tol);
+            let lhs = Intervals::combine(Op::Difference, &a, &bc, tol);
+            let rhs = Intervals::combine(
+                outer,
+                &Intervals::combine(Op::Difference, &a, &b, tol),
+                &Intervals::combine(Op::Difference, &a, &c, tol),
+                tol,
+            );
+            prop_assert!(same(&lhs, &rhs), "{:?} vs {:?}", spans(&lhs), spans(&rhs));
+        }
         // A n B = A - (A - B).
         let ab = Intervals::combine(Op::Intersection, &a, &b, tol);
         let amab = Intervals::combine(Op::Difference, &a, &Intervals::combine(Op::Difference, &a, &b, tol), tol);
         prop_assert!(same(&ab, &amab));
     }
+}
+
+/// The cube [-1, 1]^3, material 0.
+fn unit_cube() -> Node {
+    Node::primitive(
+        Shape::Box {
+            min: Vec3::splat(-1.0),
+            max: Vec3::splat(1.0),
+        },
+        0,
+    )
 }
 
 fn sphere(c: Vec3, r: f32) -> Node {
@@ -257,13 +261,7 @@ impl Rng {
 fn subtracted_surfaces_face_out_of_the_result() {
     let obj = CsgObject::new(
         Node::difference(vec![
-            Node::primitive(
-                Shape::Box {
-                    min: Vec3::splat(-1.0),
-                    max: Vec3::splat(1.0),
-                },
-                0,
-            ),
+            unit_cube(),
             Node::Primitive {
                 shape: Shape::Sphere {
                     center: Vec3::ZERO,
@@ -313,16 +311,7 @@ fn coincident_faces_leave_no_speckles() {
         material: 1,
     };
     let obj = CsgObject::new(
-        Node::difference(vec![
-            Node::primitive(
-                Shape::Box {
-                    min: Vec3::splat(-1.0),
-                    max: Vec3::splat(1.0),
-                },
-                0,
-            ),
-            slot,
-        ]),
+        Node::difference(vec![unit_cube(), slot]),
         Mat4::from_rotation_y(0.3) * Mat4::from_translation(Vec3::new(0.1, 0.2, 0.3)),
     )
     .unwrap();
@@ -488,7 +477,7 @@ fn union_early_exit_matches_full_evaluation() {
 
 #[test]
 fn closed_mesh_operand_matches_the_triangle_bvh_and_the_analytic_box() {
-    use crate::accel::{bvh::Bvh, Accel};
+    use crate::accel::{bvh::BvhAccel, Accel};
     use crate::scene::generate;
     use std::sync::Arc;
     // Alone, a mesh operand finds what the BVH finds over the same triangles, from outside and inside.
@@ -503,7 +492,7 @@ fn closed_mesh_operand_matches_the_triangle_bvh_and_the_analytic_box() {
         Mat4::IDENTITY,
     )
     .unwrap();
-    let bvh = Bvh::build(Arc::new(generate::single_mesh_scene(ico)));
+    let bvh = BvhAccel::build(Arc::new(generate::single_mesh_scene(ico)));
     let mut rng = Rng(11);
     let (mut hits, mut inside) = (0, 0);
     for k in 0..4000 {
@@ -550,16 +539,7 @@ fn closed_mesh_operand_matches_the_triangle_bvh_and_the_analytic_box() {
     )
     .unwrap();
     let analytic = CsgObject::new(
-        Node::difference(vec![
-            Node::primitive(
-                Shape::Box {
-                    min: Vec3::splat(-1.0),
-                    max: Vec3::splat(1.0),
-                },
-                0,
-            ),
-            sphere(),
-        ]),
+        Node::difference(vec![unit_cube(), sphere()]),
         Mat4::from_rotation_y(0.3),
     )
     .unwrap();

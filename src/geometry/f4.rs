@@ -11,6 +11,19 @@ mod imp {
     #[repr(transparent)]
     pub struct F4(__m128);
 
+    /// Methods `name(self, o) -> Out` that apply one SSE intrinsic to both operands' lanes.
+    macro_rules! lanewise {
+        ($($name:ident -> $out:ident = $intr:ident;)*) => {
+            $(
+                #[inline(always)]
+                pub fn $name(self, o: Self) -> $out {
+                    // SAFETY: SSE is part of the x86_64 baseline.
+                    $out(unsafe { $intr(self.0, o.0) })
+                }
+            )*
+        };
+    }
+
     /// A lane mask (all bits set where true).
     #[derive(Clone, Copy)]
     #[repr(transparent)]
@@ -40,48 +53,20 @@ mod imp {
             // SAFETY: SSE2 baseline; `__m128i` and `[i32; 4]` have the same size.
             unsafe { std::mem::transmute::<__m128i, [i32; 4]>(_mm_cvttps_epi32(self.0)) }
         }
-        #[inline(always)]
-        pub fn min(self, o: Self) -> Self {
-            // SAFETY: SSE baseline.
-            Self(unsafe { _mm_min_ps(self.0, o.0) })
-        }
-        #[inline(always)]
-        pub fn max(self, o: Self) -> Self {
-            // SAFETY: SSE baseline.
-            Self(unsafe { _mm_max_ps(self.0, o.0) })
-        }
-        #[inline(always)]
-        pub fn le(self, o: Self) -> M4 {
-            // SAFETY: SSE baseline.
-            M4(unsafe { _mm_cmple_ps(self.0, o.0) })
-        }
-        #[inline(always)]
-        pub fn lt(self, o: Self) -> M4 {
-            // SAFETY: SSE baseline.
-            M4(unsafe { _mm_cmplt_ps(self.0, o.0) })
-        }
-        #[inline(always)]
-        pub fn gt(self, o: Self) -> M4 {
-            // SAFETY: SSE baseline.
-            M4(unsafe { _mm_cmpgt_ps(self.0, o.0) })
-        }
-        #[inline(always)]
-        pub fn eq(self, o: Self) -> M4 {
-            // SAFETY: SSE baseline.
-            M4(unsafe { _mm_cmpeq_ps(self.0, o.0) })
+        lanewise! {
+            min -> F4 = _mm_min_ps;
+            max -> F4 = _mm_max_ps;
+            le -> M4 = _mm_cmple_ps;
+            lt -> M4 = _mm_cmplt_ps;
+            gt -> M4 = _mm_cmpgt_ps;
+            eq -> M4 = _mm_cmpeq_ps;
         }
     }
 
     impl M4 {
-        #[inline(always)]
-        pub fn or(self, o: Self) -> Self {
-            // SAFETY: SSE baseline.
-            Self(unsafe { _mm_or_ps(self.0, o.0) })
-        }
-        #[inline(always)]
-        pub fn and(self, o: Self) -> Self {
-            // SAFETY: SSE baseline.
-            Self(unsafe { _mm_and_ps(self.0, o.0) })
+        lanewise! {
+            or -> M4 = _mm_or_ps;
+            and -> M4 = _mm_and_ps;
         }
         /// `self && !o`.
         #[inline(always)]

@@ -7,6 +7,7 @@ pub mod colour;
 pub(crate) mod f4;
 pub mod frame;
 pub mod hash;
+pub mod median;
 pub mod motion;
 pub mod triangle;
 
@@ -20,6 +21,10 @@ pub const fn gamma(n: i32) -> f32 {
     let e = f32::EPSILON * 0.5 * n as f32;
     e / (1.0 - e)
 }
+
+/// The factor by which a slab test widens its far distances so that rounding never culls a box the
+/// ray touches (Ize 2013: the three roundings of `(bound - o) * (1 / d)` in the near and far distance).
+pub const SLAB_WIDEN: f32 = 1.0 + 2.0 * gamma(3);
 
 /// A ray segment `o + t d` for `t` in `(t_min, t_max)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -156,6 +161,27 @@ impl Aabb {
         2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
     }
 
+    /// The part `(t0, t1)` of the parameter range `[t_min, t_max]` of the ray `o + t d` (given as `o` and
+    /// `inv = 1 / d`) that lies in the box, or None where the ray misses it: the one scalar slab test.
+    ///
+    /// Conservative (Ize 2013): distances away from zero are widened by `SLAB_WIDEN` (for `t >= 0`
+    /// the far one, for the negative distances of a whole line the near one), so rounding never culls
+    /// a box the ray touches. A NaN distance (`0 * inf`: a ray in a face plane, parallel to it) leaves
+    /// the range as it was, so such a ray is kept; a ray parallel to an axis outside the slab is not.
+    #[inline(always)]
+    pub fn clip(&self, o: Vec3, inv: Vec3, t_min: f32, t_max: f32) -> Option<(f32, f32)> {
+        let (mut t0, mut t1) = (t_min, t_max);
+        for a in 0..3 {
+            let (lo, hi) = ((self.min[a] - o[a]) * inv[a], (self.max[a] - o[a]) * inv[a]);
+            let (near, far) = if inv[a] < 0.0 { (hi, lo) } else { (lo, hi) };
+            let near = if near < 0.0 { near * SLAB_WIDEN } else { near };
+            let far = if far > 0.0 { far * SLAB_WIDEN } else { far };
+            t0 = if near > t0 { near } else { t0 };
+            t1 = if far < t1 { far } else { t1 };
+        }
+        (t0 <= t1).then_some((t0, t1))
+    }
+
     /// The box that contains this one after an affine transform (all eight corners).
     pub fn transformed(&self, m: &glam::Mat4) -> Self {
         if self.is_empty() {
@@ -171,5 +197,44 @@ impl Aabb {
             out = out.grow(m.transform_point3(c));
         }
         out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slab_test_keeps_rays_along_a_face_and_clips_segments() {
+        let b = Aabb {
+            min: Vec3::ZERO,
+            max: Vec3::ONE,
+        };
+        let clip = |o: Vec3, d: Vec3, t_max: f32| b.clip(o, d.recip(), 0.0, t_max);
+        // Parallel to x and z, exactly on the y = 0 face: inside the slab, so kept.
+        let (t0, t1) = clip(Vec3::new(-1.0, 0.0, 0.5), Vec3::X, f32::INFINITY).unwrap();
+        assert!(t0 <= 1.0 && t1 >= 2.0, "{t0} {t1}");
+        assert!(clip(Vec3::new(-1.0, -0.01, 0.5), Vec3::X, f32::INFINITY).is_none());
+        assert!(clip(Vec3::new(-1.0, -0.01, 0.5), -Vec3::X, f32::INFINITY).is_none());
+        assert!(clip(Vec3::new(-1.0, 0.5, 0.5), Vec3::X, 0.5).is_none());
+        assert!(clip(Vec3::new(-1.0, 0.5, 0.5), Vec3::X, 1.5).is_some());
+        assert!(clip(Vec3::new(2.0, 0.5, 0.5), Vec3::X, f32::INFINITY).is_none());
+        // A whole line finds the box behind its origin too.
+        let behind = b.clip(
+            Vec3::splat(3.0),
+            Vec3::ONE.recip(),
+            f32::NEG_INFINITY,
+            f32::INFINITY,
+        );
+        let (t0, t1) = behind.unwrap();
+        assert!(t0 <= -3.0 && t1 >= -2.0, "{t0} {t1}");
+        // Rounding never culls a box whose face the ray just touches at a far distance.
+        let far = Aabb {
+            min: Vec3::new(1e4, 0.0, 0.0),
+            max: Vec3::new(1e4, 1.0, 1.0),
+        };
+        let o = Vec3::new(0.1, 0.3, 0.7);
+        let d = far.min + Vec3::new(0.0, 0.5, 0.25) - o;
+        assert!(far.clip(o, d.recip(), 0.0, f32::INFINITY).is_some());
     }
 }

@@ -167,7 +167,7 @@ pub fn intersect(
 mod tests {
     use super::*;
 
-    fn hit(o: Vec3, d: Vec3, tri: [Vec3; 3]) -> Option<TriHit> {
+    pub(super) fn hit(o: Vec3, d: Vec3, tri: [Vec3; 3]) -> Option<TriHit> {
         intersect(
             o,
             &RayShear::new(d),
@@ -234,17 +234,7 @@ mod direction_tests {
             let b = i as f32 * 0.377;
             let d = Vec3::new(a.cos() * b.sin(), a.sin() * b.sin(), b.cos()).normalize();
             let o = target - d * 3.0;
-            if intersect(
-                o,
-                &RayShear::new(d),
-                tri[0],
-                tri[1],
-                tri[2],
-                0.0,
-                f32::INFINITY,
-            )
-            .is_none()
-            {
+            if super::tests::hit(o, d, tri).is_none() {
                 missed += 1;
                 if missed < 4 {
                     eprintln!("missed d = {d:?}");
