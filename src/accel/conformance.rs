@@ -649,3 +649,26 @@ fn moving_instances_are_hit_where_they_are_at_the_ray_time() {
         }
     }
 }
+
+#[test]
+fn rays_that_are_no_rays_hit_nothing() {
+    // NaN and zero directions and NaN limits: a miss in every backend, never a panic.
+    let s = scene(
+        vec![generate::quad_grid(8)],
+        vec![Instance::new(0, Mat4::IDENTITY)],
+    );
+    let o = Vec3::new(1.0, 1.0, 1.0);
+    let rays = [
+        Ray::new(o, Vec3::ZERO),
+        Ray::new(o, Vec3::NAN),
+        Ray::new(o, Vec3::new(f32::INFINITY, 0.0, -1.0)),
+        Ray::segment(o, -Vec3::Z, f32::NAN),
+    ];
+    for case in cases() {
+        let accel = (case.build)(s.clone());
+        for ray in &rays {
+            assert!(accel.intersect(ray).is_none(), "{}: {ray:?}", case.name);
+            assert!(!accel.occluded(ray), "{}: {ray:?}", case.name);
+        }
+    }
+}

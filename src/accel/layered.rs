@@ -85,6 +85,10 @@ impl<S: Triangles> Accel for Layered<S> {
     }
 
     fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        // A NaN or zero direction would make every slab test pass and overflow the walk's stack.
+        if !ray.is_valid() {
+            return None;
+        }
         // Decided before the walk, so the walk of a scene without CSG compiles as it did before
         // (testing after it cost 5% on coherent rays).
         if self.objects.is_empty() {
@@ -95,12 +99,13 @@ impl<S: Triangles> Accel for Layered<S> {
     }
 
     fn occluded(&self, ray: &Ray) -> bool {
-        self.statics.occluded(&self.scene, ray)
-            || self
-                .moving
-                .as_ref()
-                .is_some_and(|m| m.intersect(&self.scene, ray, None, true).is_some())
-            || (!self.objects.is_empty() && self.objects.occluded(&self.scene.csg, ray))
+        ray.is_valid()
+            && (self.statics.occluded(&self.scene, ray)
+                || self
+                    .moving
+                    .as_ref()
+                    .is_some_and(|m| m.intersect(&self.scene, ray, None, true).is_some())
+                || (!self.objects.is_empty() && self.objects.occluded(&self.scene.csg, ray)))
     }
 
     fn memory_bytes(&self) -> usize {

@@ -225,8 +225,11 @@ fn write_exr(image: &Image, path: &Path) -> Result<(), EncodeError> {
         let p: Vec4 = image.pixels[y * w + x];
         (p.x, p.y, p.z, p.w)
     });
+    // Compressed blocks in file order, not in the order threads finish them: the same image gives
+    // the same bytes (sharded frames and merged stills are compared byte for byte).
     exr::prelude::Image::from_channels((image.width, image.height), channels)
         .write()
+        .non_parallel()
         .to_file(path)
         .map_err(EncodeError::Exr)
 }

@@ -72,6 +72,12 @@ impl Ray {
         Self { time, ..self }
     }
 
+    /// Whether the ray can be traced: a finite, non-zero direction and limits that are not NaN.
+    #[inline]
+    pub fn is_valid(&self) -> bool {
+        self.d.is_finite() && self.d != Vec3::ZERO && !(self.t_min.is_nan() || self.t_max.is_nan())
+    }
+
     pub fn at(&self, t: f32) -> Vec3 {
         self.o + self.d * t
     }
