@@ -17,12 +17,23 @@ pub struct SurfaceInteraction {
     pub bsdf: Bsdf,
     /// Emitted radiance towards the incoming ray.
     pub emission: Vec3,
+    /// KHR_materials_unlit: `emission` is the base colour and nothing scatters off the surface.
+    pub unlit: bool,
     pub inst: u32,
     pub prim: u32,
 }
 
 fn tex(scene: &Scene, t: Option<TexRef>, uv: Vec2) -> Option<glam::Vec4> {
     t.map(|t| scene.textures[t.texture as usize].sample(t.apply(uv)))
+}
+
+/// What a surface sends towards the viewer by itself: an unlit material's base colour, or emission.
+fn radiance(scene: &Scene, mat: &Material, uv: Vec2) -> Vec3 {
+    if mat.unlit {
+        scene.base_color(mat, uv).xyz()
+    } else {
+        emission(scene, mat, uv)
+    }
 }
 
 /// Emitted radiance of a material at a texture coordinate.
@@ -94,7 +105,8 @@ impl SurfaceInteraction {
             ng,
             uv,
             bsdf,
-            emission: emission(scene, mat, uv),
+            emission: radiance(scene, mat, uv),
+            unlit: mat.unlit,
             inst: hit.inst,
             prim: hit.prim,
         }
@@ -117,7 +129,8 @@ impl SurfaceInteraction {
             ng,
             uv,
             bsdf: material_bsdf(scene, mat, uv, ng, entering),
-            emission: emission(scene, mat, uv),
+            emission: radiance(scene, mat, uv),
+            unlit: mat.unlit,
             inst: hit.inst,
             prim: hit.prim,
         }
