@@ -24,8 +24,8 @@ use crate::geometry::Motion;
 use crate::geometry::{Aabb, Hit, Ray};
 pub use animation::Animation;
 pub use envmap::EnvMap;
-pub use layers::MaterialLayers;
 pub use error::LoadError;
+pub use layers::MaterialLayers;
 pub use mesh::Mesh;
 pub use texture::{Texture, Wrap};
 

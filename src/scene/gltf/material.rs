@@ -10,7 +10,9 @@ use crate::scene::{AlphaMode, Material, TexRef};
 
 /// A number of an extension's JSON object, or its default.
 fn num(v: &Value, key: &str, default: f32) -> f32 {
-    v.get(key).and_then(Value::as_f64).map_or(default, |f| f as f32)
+    v.get(key)
+        .and_then(Value::as_f64)
+        .map_or(default, |f| f as f32)
 }
 
 /// An RGB triple of an extension's JSON object, or its default.
