@@ -12,7 +12,7 @@ use crate::sample::warp::uniform_cone;
 const MIN_ROUGHNESS: f32 = 0.05;
 /// Albedo table resolution: cosines 0..1 and roughnesses 0..1 at these many intervals.
 const COS_STEPS: usize = 32;
-const ROUGH_STEPS: usize = 16;
+const ROUGH_STEPS: usize = 32;
 
 #[derive(Clone, Copy, Debug)]
 pub struct Sheen {
@@ -131,7 +131,7 @@ pub fn albedo(cos: f32, roughness: f32) -> f32 {
 
 /// Midpoint quadrature in (theta, phi) over the hemisphere (symmetric in phi) at each table node.
 fn albedo_table() -> Vec<f32> {
-    const THETA: usize = 96;
+    const THETA: usize = 128;
     const PHI: usize = 48;
     let mut t = Vec::with_capacity((COS_STEPS + 1) * (ROUGH_STEPS + 1));
     for j in 0..=ROUGH_STEPS {

@@ -289,7 +289,7 @@ const THETA_BINS: usize = 16;
 const PHI_BINS: usize = 32;
 
 /// Pearson's chi-square test of `sample`'s directions against its `eval` pdf, Mitsuba-style: the
-/// sphere in (cos theta, phi) cells, expected counts from the pdf integrated over each cell (8 x 8
+/// sphere in (cos theta, phi) cells, expected counts from the pdf integrated over each cell (24 x 24
 /// points), cells expecting under 5 pooled. Returns the p-value.
 fn chi_square(bsdf: &Bsdf, wo: Vec3, n: u32) -> f64 {
     let cell = |w: Vec3| {
@@ -308,7 +308,7 @@ fn chi_square(bsdf: &Bsdf, wo: Vec3, n: u32) -> f64 {
         }
     }
     let mut expected = vec![0.0f64; THETA_BINS * PHI_BINS];
-    const SUB: usize = 8;
+    const SUB: usize = 24;
     let dz = 2.0 / THETA_BINS as f32;
     let dphi = 2.0 * PI / PHI_BINS as f32;
     for a in 0..THETA_BINS {
