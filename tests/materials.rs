@@ -342,3 +342,62 @@ fn thin_glass_pane_passes_direct_light() {
         "{got} vs {expected}"
     );
 }
+
+/// KHR_materials_unlit: the sphere shows its base colour exactly, whatever lights it.
+#[test]
+fn unlit_sphere_renders_its_base_colour() {
+    let c = Vec4::new(0.3, 0.6, 0.9, 1.0);
+    let scene = furnace(Material {
+        base_color: c,
+        unlit: true,
+        ..Default::default()
+    });
+    let img = render(&scene, &furnace_view(), 24, 4, 8);
+    let px = sphere_pixels(&img);
+    assert!(px.len() > 100);
+    for p in &px {
+        assert!((*p - c.truncate()).abs().max_element() < 1e-5, "pixel {p}");
+    }
+}
+
+/// White furnace of the layers on a sphere: a white Lambert base under a clearcoat and a sheen (each
+/// alone and both) renders at most 1 and loses little (the coat's single-scattering GGX loss, the
+/// sheen's albedo-scaling approximation).
+#[test]
+fn white_furnace_layered_spheres_reflect_at_most_one() {
+    use glint::scene::layers::{Clearcoat, Sheen};
+    let coat = Clearcoat {
+        factor: 1.0,
+        factor_tex: None,
+        roughness: 0.4,
+        roughness_tex: None,
+        normal_tex: None,
+        normal_scale: 1.0,
+    };
+    let sheen = Sheen {
+        color: Vec3::ONE,
+        color_tex: None,
+        roughness: 0.5,
+        roughness_tex: None,
+    };
+    for (label, clearcoat, sheen) in [
+        ("coat", Some(coat), None),
+        ("sheen", None, Some(sheen)),
+        ("both", Some(coat), Some(sheen)),
+    ] {
+        let mut m = Material {
+            base_color: Vec4::ONE,
+            metallic: 0.0,
+            specular: 0.0,
+            ..Default::default()
+        };
+        m.layers.clearcoat = clearcoat;
+        m.layers.sheen = sheen;
+        let img = render(&furnace(m), &furnace_view(), 24, 256, 16);
+        let px = sphere_pixels(&img);
+        let mean = mean(&px);
+        eprintln!("furnace sphere {label}: mean {mean}");
+        assert!(mean.max_element() < 1.0 + 5e-3, "{label}: {mean}");
+        assert!(mean.min_element() > 0.9, "{label}: {mean}");
+    }
+}

@@ -145,7 +145,7 @@ impl<'a> Integrator<'a> {
                 };
                 l += beta * si.emission * w;
             }
-            if bounce >= self.max_depth {
+            if bounce >= self.max_depth || si.unlit {
                 break;
             }
             let wo = -ray.d;

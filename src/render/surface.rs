@@ -3,10 +3,10 @@
 
 use glam::{Vec2, Vec3, Vec4Swizzles};
 
-use super::bsdf::Bsdf;
+use super::bsdf::{Bsdf, Coat, Sheen};
 use crate::geometry::Frame;
 use crate::geometry::{Hit, Ray};
-use crate::scene::{Material, Scene, TexRef};
+use crate::scene::{Material, MaterialLayers, Scene, TexRef};
 
 #[derive(Clone, Copy, Debug)]
 pub struct SurfaceInteraction {
@@ -17,12 +17,23 @@ pub struct SurfaceInteraction {
     pub bsdf: Bsdf,
     /// Emitted radiance towards the incoming ray.
     pub emission: Vec3,
+    /// KHR_materials_unlit: `emission` is the base colour and nothing scatters off the surface.
+    pub unlit: bool,
     pub inst: u32,
     pub prim: u32,
 }
 
 fn tex(scene: &Scene, t: Option<TexRef>, uv: Vec2) -> Option<glam::Vec4> {
     t.map(|t| scene.textures[t.texture as usize].sample(t.apply(uv)))
+}
+
+/// What a surface sends towards the viewer by itself: an unlit material's base colour, or emission.
+fn radiance(scene: &Scene, mat: &Material, uv: Vec2) -> Vec3 {
+    if mat.unlit {
+        scene.base_color(mat, uv).xyz()
+    } else {
+        emission(scene, mat, uv)
+    }
 }
 
 /// Emitted radiance of a material at a texture coordinate.
@@ -76,25 +87,25 @@ impl SurfaceInteraction {
         }
         let uv = mesh.uv_at(hit.prim, u, v);
 
-        if let Some(nm) = tex(scene, mat.normal_tex, uv) {
-            if let Some((t, b)) = tangent_frame(scene, hit, n, &to_world) {
-                let m = nm.xyz() * 2.0 - Vec3::ONE;
-                let m = Vec3::new(m.x * mat.normal_scale, m.y * mat.normal_scale, m.z);
-                let mapped = (t * m.x + b * m.y + n * m.z).normalize_or_zero();
-                if mapped.dot(ng) > 0.0 {
-                    n = mapped;
-                }
-            }
-        }
-        let n = valid_reflection_normal(n, ng, -ray.d);
+        let mapped = |nm: Option<TexRef>, scale: f32| {
+            let m = mapped_normal(scene, hit, (nm, scale), n, ng, &to_world, uv);
+            valid_reflection_normal(m, ng, -ray.d)
+        };
+        // The clearcoat has its own normal map, else follows the interpolated normal.
+        let coat_n = match &mat.layers.clearcoat {
+            Some(c) => mapped(c.normal_tex, c.normal_scale),
+            None => n,
+        };
+        let n = mapped(mat.normal_tex, mat.normal_scale);
 
-        let bsdf = material_bsdf(scene, mat, uv, n, entering);
+        let bsdf = material_bsdf(scene, mat, uv, (n, coat_n), entering);
         Self {
             p,
             ng,
             uv,
             bsdf,
-            emission: emission(scene, mat, uv),
+            emission: radiance(scene, mat, uv),
+            unlit: mat.unlit,
             inst: hit.inst,
             prim: hit.prim,
         }
@@ -116,17 +127,52 @@ impl SurfaceInteraction {
             p: s.p,
             ng,
             uv,
-            bsdf: material_bsdf(scene, mat, uv, ng, entering),
-            emission: emission(scene, mat, uv),
+            bsdf: material_bsdf(scene, mat, uv, (ng, ng), entering),
+            emission: radiance(scene, mat, uv),
+            unlit: mat.unlit,
             inst: hit.inst,
             prim: hit.prim,
         }
     }
 }
 
-/// The material's BSDF at a texture coordinate around shading normal `n`; `entering` says whether the
-/// ray arrives from outside (for the IOR ratio and absorption of transmissive solids).
-fn material_bsdf(scene: &Scene, mat: &Material, uv: Vec2, n: Vec3, entering: bool) -> Bsdf {
+/// A normal-mapped shading normal (`map`: texture and scale), or `n` where the map is missing or
+/// points below the geometric normal `ng`.
+fn mapped_normal(
+    scene: &Scene,
+    hit: &Hit,
+    map: (Option<TexRef>, f32),
+    n: Vec3,
+    ng: Vec3,
+    to_world: &glam::Mat4,
+    uv: Vec2,
+) -> Vec3 {
+    let Some(nm) = tex(scene, map.0, uv) else {
+        return n;
+    };
+    let Some((t, b)) = tangent_frame(scene, hit, n, to_world) else {
+        return n;
+    };
+    let m = nm.xyz() * 2.0 - Vec3::ONE;
+    let m = Vec3::new(m.x * map.1, m.y * map.1, m.z);
+    let mapped = (t * m.x + b * m.y + n * m.z).normalize_or_zero();
+    if mapped.dot(ng) > 0.0 {
+        mapped
+    } else {
+        n
+    }
+}
+
+/// The material's BSDF at a texture coordinate around shading normals `(n, coat_n)` (the base's and
+/// the clearcoat's); `entering` says whether the ray arrives from outside (for the IOR ratio and
+/// absorption of transmissive solids).
+fn material_bsdf(
+    scene: &Scene,
+    mat: &Material,
+    uv: Vec2,
+    (n, coat_n): (Vec3, Vec3),
+    entering: bool,
+) -> Bsdf {
     let base = scene.base_color(mat, uv);
     let (mut metallic, mut roughness) = (mat.metallic, mat.roughness);
     if let Some(mr) = tex(scene, mat.metallic_roughness_tex, uv) {
@@ -137,16 +183,44 @@ fn material_bsdf(scene: &Scene, mat: &Material, uv: Vec2, n: Vec3, entering: boo
         Some(t) => mat.transmission * t.x,
         None => mat.transmission,
     };
+    let specular = match tex(scene, mat.layers.specular_tex, uv) {
+        Some(t) => mat.specular * t.w,
+        None => mat.specular,
+    };
     let mut bsdf = Bsdf::new(
         Frame::from_normal(n),
         base.xyz(),
         metallic,
         roughness,
-        mat.specular,
+        specular,
     )
     .with_dielectric(transmission, mat.ior, mat.is_thin_walled(), entering);
     bsdf.absorption = mat.absorption();
+    add_layers(scene, &mat.layers, uv, coat_n, &mut bsdf);
     bsdf
+}
+
+/// KHR_materials_specular's colour, the clearcoat and the sheen, textures applied; a layer whose
+/// weight comes to 0 here is left off (and costs nothing).
+fn add_layers(scene: &Scene, l: &MaterialLayers, uv: Vec2, coat_n: Vec3, bsdf: &mut Bsdf) {
+    bsdf.specular_color = match tex(scene, l.specular_color_tex, uv) {
+        Some(t) => l.specular_color * t.xyz(),
+        None => l.specular_color,
+    };
+    if let Some(c) = &l.clearcoat {
+        let weight = c.factor * tex(scene, c.factor_tex, uv).map_or(1.0, |t| t.x);
+        let rough = c.roughness * tex(scene, c.roughness_tex, uv).map_or(1.0, |t| t.y);
+        if weight > 0.0 {
+            bsdf.coat = Some(Coat::new(Frame::from_normal(coat_n), weight, rough));
+        }
+    }
+    if let Some(s) = &l.sheen {
+        let color = s.color * tex(scene, s.color_tex, uv).map_or(Vec3::ONE, |t| t.xyz());
+        let rough = s.roughness * tex(scene, s.roughness_tex, uv).map_or(1.0, |t| t.w);
+        if color.max_element() > 0.0 {
+            bsdf.sheen = Some(Sheen::new(color, rough));
+        }
+    }
 }
 
 /// Smallest margin above the geometric surface for the mirror direction of `wo` about the shading normal.

@@ -9,6 +9,7 @@ pub mod error;
 pub mod features;
 pub mod generate;
 pub mod gltf;
+pub mod layers;
 pub mod mesh;
 pub mod obj;
 pub mod texture;
@@ -24,6 +25,7 @@ use crate::geometry::{Aabb, Hit, Ray};
 pub use animation::Animation;
 pub use envmap::EnvMap;
 pub use error::LoadError;
+pub use layers::MaterialLayers;
 pub use mesh::Mesh;
 pub use texture::{Texture, Wrap};
 
@@ -135,6 +137,10 @@ pub struct Material {
     /// `attenuation_distance` inside it (infinite: no absorption).
     pub attenuation_color: Vec3,
     pub attenuation_distance: f32,
+    /// KHR_materials_unlit: the base colour is emitted as it is, unlit, and nothing bounces off it.
+    pub unlit: bool,
+    /// KHR_materials_specular's colour (F0 tint) and textures, and the clearcoat and sheen layers.
+    pub layers: MaterialLayers,
 }
 
 impl Default for Material {
@@ -159,6 +165,8 @@ impl Default for Material {
             thickness: 0.0,
             attenuation_color: Vec3::ONE,
             attenuation_distance: f32::INFINITY,
+            unlit: false,
+            layers: MaterialLayers::default(),
         }
     }
 }
@@ -174,6 +182,7 @@ impl Material {
             &mut self.transmission_tex,
         ]
         .into_iter()
+        .chain(self.layers.textures_mut())
         .flatten()
     }
 

@@ -5,7 +5,27 @@ use glam::{Vec3, Vec4};
 use gltf::json::Value;
 
 use super::Loader;
+use crate::scene::layers::{Clearcoat, Sheen};
 use crate::scene::{AlphaMode, Material, TexRef};
+
+/// A number of an extension's JSON object, or its default.
+fn num(v: &Value, key: &str, default: f32) -> f32 {
+    v.get(key)
+        .and_then(Value::as_f64)
+        .map_or(default, |f| f as f32)
+}
+
+/// An RGB triple of an extension's JSON object, or its default.
+fn rgb(v: &Value, key: &str, default: Vec3) -> Vec3 {
+    match v.get(key).and_then(Value::as_array) {
+        Some(a) if a.len() == 3 => Vec3::new(
+            a[0].as_f64().unwrap_or(default.x as f64) as f32,
+            a[1].as_f64().unwrap_or(default.y as f64) as f32,
+            a[2].as_f64().unwrap_or(default.z as f64) as f32,
+        ),
+        _ => default,
+    }
+}
 
 /// KHR_texture_transform as a row-major 2x3 matrix: T * R * S.
 pub(crate) fn uv_transform(offset: [f32; 2], rotation: f32, scale: [f32; 2]) -> [[f32; 3]; 2] {
@@ -99,10 +119,23 @@ impl Loader<'_> {
             ior: m.ior().unwrap_or(1.5),
             ..Material::default()
         };
+        // An unlit material shows its base colour and nothing else (its emission is not a light).
+        mat.unlit = m.extension_value("KHR_materials_unlit").is_some();
+        if mat.unlit {
+            mat.emissive = Vec3::ZERO;
+        }
         if let Some(spec) = m.extension_value("KHR_materials_specular") {
-            if let Some(f) = spec.get("specularFactor").and_then(|f| f.as_f64()) {
-                mat.specular = f as f32;
-            }
+            mat.specular = num(spec, "specularFactor", 1.0);
+            mat.layers.specular_color = rgb(spec, "specularColorFactor", Vec3::ONE).max(Vec3::ZERO);
+            mat.layers.specular_tex = self.json_tex(spec, "specularTexture", false, &label);
+            mat.layers.specular_color_tex =
+                self.json_tex(spec, "specularColorTexture", true, &label);
+        }
+        if let Some(cc) = m.extension_value("KHR_materials_clearcoat") {
+            mat.layers.clearcoat = self.clearcoat(cc, &label);
+        }
+        if let Some(sh) = m.extension_value("KHR_materials_sheen") {
+            mat.layers.sheen = self.sheen(sh, &label);
         }
         if let Some(t) = pbr.base_color_texture() {
             mat.base_color_tex = self.tex_ref(TexInfo::from_info(&t), true, &label);
@@ -134,6 +167,59 @@ impl Loader<'_> {
             mat.attenuation_distance = if d > 0.0 { d } else { f32::INFINITY };
         }
         mat
+    }
+
+    /// KHR_materials_clearcoat's factors and textures; None when the coat is off (factor 0).
+    fn clearcoat(&mut self, cc: &Value, label: &str) -> Option<Clearcoat> {
+        let factor = num(cc, "clearcoatFactor", 0.0).clamp(0.0, 1.0);
+        if factor == 0.0 {
+            return None;
+        }
+        let normal = cc.get("clearcoatNormalTexture");
+        Some(Clearcoat {
+            factor,
+            factor_tex: self.json_tex(cc, "clearcoatTexture", false, label),
+            roughness: num(cc, "clearcoatRoughnessFactor", 0.0).clamp(0.0, 1.0),
+            roughness_tex: self.json_tex(cc, "clearcoatRoughnessTexture", false, label),
+            normal_tex: self.json_tex(cc, "clearcoatNormalTexture", false, label),
+            normal_scale: normal.map_or(1.0, |n| num(n, "scale", 1.0)),
+        })
+    }
+
+    /// KHR_materials_sheen's factors and textures; None when the sheen is off (colour black).
+    fn sheen(&mut self, sh: &Value, label: &str) -> Option<Sheen> {
+        let color = rgb(sh, "sheenColorFactor", Vec3::ZERO).clamp(Vec3::ZERO, Vec3::ONE);
+        if color == Vec3::ZERO {
+            return None;
+        }
+        Some(Sheen {
+            color,
+            color_tex: self.json_tex(sh, "sheenColorTexture", true, label),
+            roughness: num(sh, "sheenRoughnessFactor", 0.0).clamp(0.0, 1.0),
+            roughness_tex: self.json_tex(sh, "sheenRoughnessTexture", false, label),
+        })
+    }
+
+    /// A textureInfo inside an extension's JSON (`index`, `texCoord`, KHR_texture_transform).
+    fn json_tex(&mut self, v: &Value, key: &str, srgb: bool, label: &str) -> Option<TexRef> {
+        let t = v.get(key)?;
+        let Some(index) = t.get("index").and_then(Value::as_u64) else {
+            self.scene
+                .warnings
+                .push(format!("{label}: {key} has no texture index; ignored"));
+            return None;
+        };
+        if index as usize >= self.doc.textures().len() {
+            self.scene.warnings.push(format!(
+                "{label}: {key} names texture {index}, which does not exist; ignored"
+            ));
+            return None;
+        }
+        let tc = t.get("texCoord").and_then(Value::as_u64).unwrap_or(0) as u32;
+        let ext = t
+            .get("extensions")
+            .and_then(|e| e.get("KHR_texture_transform"));
+        self.tex_ref(TexInfo::from_parts(index as usize, tc, ext), srgb, label)
     }
 
     fn tex_ref(&mut self, info: TexInfo, srgb: bool, label: &str) -> Option<TexRef> {

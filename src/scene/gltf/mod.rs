@@ -29,12 +29,16 @@ pub(crate) use material::uv_transform;
 
 use super::{Camera, Instance, LoadError, Scene};
 
-/// Extensions glint understands well enough that a file may require them.
-const SUPPORTED_REQUIRED: &[&str] = &[
+/// Extensions glint implements: a file may require them, and using any other draws a warning.
+const SUPPORTED: &[&str] = &[
     "KHR_lights_punctual",
+    "KHR_materials_clearcoat",
     "KHR_materials_emissive_strength",
-    "KHR_materials_transmission",
     "KHR_materials_ior",
+    "KHR_materials_sheen",
+    "KHR_materials_specular",
+    "KHR_materials_transmission",
+    "KHR_materials_unlit",
     "KHR_materials_volume",
     "KHR_texture_transform",
 ];
@@ -91,7 +95,7 @@ fn document(json: &[u8]) -> Result<gltf::Document, GltfError> {
     if let Some(ext) = root
         .extensions_required
         .iter()
-        .find(|e| !SUPPORTED_REQUIRED.contains(&e.as_str()))
+        .find(|e| !SUPPORTED.contains(&e.as_str()))
     {
         return Err(GltfError::UnsupportedExtension(ext.clone()));
     }
@@ -162,6 +166,13 @@ struct Placed {
 impl Loader<'_> {
     fn run(mut self) -> Result<Scene, GltfError> {
         let doc = self.doc;
+        for ext in doc.extensions_used() {
+            if !SUPPORTED.contains(&ext) {
+                self.scene.warnings.push(format!(
+                    "{ext} is used but not supported; rendered without it"
+                ));
+            }
+        }
         for m in doc.materials() {
             let mat = self.material(&m);
             self.scene.materials.push(mat);

@@ -1,0 +1,270 @@
+//! The glTF metallic-roughness base (spec appendix B, KHR_materials_transmission/ior/volume/specular):
+//! Lambert, GGX/Smith reflection and transmission (Walter et al. 2007, visible normals after Heitz
+//! 2018), and delta lobes for smooth mirrors and glass, chosen among by their rough weights.
+
+use std::f32::consts::FRAC_1_PI;
+
+use glam::{Vec2, Vec3};
+
+use super::fresnel::{fresnel_exact, schlick};
+use super::microfacet::{g1, g2, ggx_d, sample_vndf};
+use super::{luminance, Bsdf, BsdfSample};
+use crate::sample::warp::cosine_hemisphere;
+
+/// Probabilities of the three lobes (reflection, diffuse, transmission).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Lobes {
+    pub reflect: f32,
+    pub diffuse: f32,
+    pub transmit: f32,
+}
+
+impl Bsdf {
+    /// Whether every lobe of the base is a delta lobe.
+    pub(super) fn base_is_delta(&self) -> bool {
+        self.alpha == 0.0 && (self.metallic == 1.0 || self.transmission == 1.0)
+    }
+
+    /// A thick surface between equal indices: rough or not, it refracts nothing (the microfacet
+    /// half vector of Walter et al. degenerates there), so its transmission is a straight delta.
+    fn index_matched(&self) -> bool {
+        !self.thin && (self.eta - 1.0).abs() < 1e-3
+    }
+
+    /// Fresnel reflectance of the dielectric layer (exact, scaled by the specular weight; total
+    /// internal reflection reflects everything whatever the weight); with a specular colour, its
+    /// strongest channel, which is what the layers below lose.
+    fn fresnel_dielectric(&self, cos: f32) -> f32 {
+        let f = fresnel_exact(cos, self.eta);
+        if f >= 1.0 {
+            1.0
+        } else if self.specular_color == Vec3::ONE {
+            self.specular * f
+        } else {
+            self.specular * self.tinted(f).max_element()
+        }
+    }
+
+    /// KHR_materials_specular's colour on the exact Fresnel: F0 tinted (and clamped to 1), and the
+    /// rise to 1 at grazing incidence kept, as the spec's Schlick form does.
+    fn tinted(&self, f: f32) -> Vec3 {
+        let f0 = fresnel_exact(1.0, self.eta);
+        let f0c = (f0 * self.specular_color).min(Vec3::ONE);
+        let rise = ((f - f0) / (1.0 - f0)).clamp(0.0, 1.0);
+        f0c + (Vec3::ONE - f0c) * rise
+    }
+
+    /// The dielectric layer's reflectance per channel.
+    fn fresnel_dielectric_rgb(&self, cos: f32) -> Vec3 {
+        let f = fresnel_exact(cos, self.eta);
+        if f >= 1.0 {
+            Vec3::ONE
+        } else if self.specular_color == Vec3::ONE {
+            Vec3::splat(self.specular * f)
+        } else {
+            self.specular * self.tinted(f)
+        }
+    }
+
+    /// Fresnel of the whole specular lobe: the dielectric and metal layers mixed by metalness.
+    fn fresnel(&self, cos: f32) -> Vec3 {
+        let metal = schlick(self.base, cos);
+        self.fresnel_dielectric_rgb(cos).lerp(metal, self.metallic)
+    }
+
+    /// The base's rough lobe weights at `wo` (reflection, diffuse, transmission).
+    fn lobe_weights(&self, cos_o: f32) -> [f32; 3] {
+        let mut fd = self.fresnel_dielectric(cos_o);
+        if self.alpha > 0.0 {
+            // Rough microfacets still refract where the macro surface reflects totally.
+            fd = fd.min(0.95);
+        }
+        let under = (1.0 - self.metallic) * (1.0 - fd) * luminance(self.base);
+        [
+            luminance(self.fresnel(cos_o)),
+            under * (1.0 - self.transmission),
+            under * self.transmission,
+        ]
+    }
+
+    /// An estimate of the base's albedo at `wo`, for choosing between layers.
+    pub(super) fn base_estimate(&self, cos_o: f32) -> f32 {
+        self.lobe_weights(cos_o).iter().sum()
+    }
+
+    /// Lobe choice probabilities at `wo`, from the lobes' rough weights, mixed with a little of a
+    /// uniform choice so that no active lobe is starved.
+    pub(super) fn lobes(&self, cos_o: f32) -> Lobes {
+        let w = self.lobe_weights(cos_o);
+        let total: f32 = w.iter().sum();
+        let active = w.iter().filter(|&&x| x > 0.0).count() as f32;
+        if total <= 0.0 {
+            return Lobes {
+                reflect: 1.0,
+                diffuse: 0.0,
+                transmit: 0.0,
+            };
+        }
+        let p = |x: f32| {
+            if x > 0.0 {
+                0.9 * x / total + 0.1 / active
+            } else {
+                0.0
+            }
+        };
+        Lobes {
+            reflect: p(w[0]),
+            diffuse: p(w[1]),
+            transmit: p(w[2]),
+        }
+    }
+
+    /// Value and pdf of the non-delta lobes for local directions `o` (above) and `i`.
+    pub(super) fn base_eval(&self, o: Vec3, i: Vec3) -> (Vec3, f32) {
+        if o.z <= 0.0 || i.z == 0.0 {
+            return (Vec3::ZERO, 0.0);
+        }
+        let lobes = self.lobes(o.z);
+        let smooth = self.alpha == 0.0;
+        if i.z > 0.0 {
+            let h = (o + i).normalize();
+            let oh = o.dot(h).max(0.0);
+            let diffuse = self.base
+                * ((1.0 - self.metallic)
+                    * (1.0 - self.transmission)
+                    * (1.0 - self.fresnel_dielectric(oh))
+                    * FRAC_1_PI);
+            let mut f = diffuse;
+            let mut pdf = lobes.diffuse * i.z * FRAC_1_PI;
+            if !smooth {
+                let d = ggx_d(h.z, self.alpha);
+                f += self.fresnel(oh) * (d * g2(o, i, self.alpha) / (4.0 * o.z * i.z));
+                pdf += lobes.reflect * g1(o, self.alpha) * d / (4.0 * o.z);
+            }
+            return (f, pdf);
+        }
+        if smooth || !self.transmits() || self.index_matched() {
+            return (Vec3::ZERO, 0.0);
+        }
+        let tint = self.base * ((1.0 - self.metallic) * self.transmission);
+        if self.thin {
+            // The reflection lobe mirrored through the surface (the spec's H_T = V + L mirrored).
+            let m = Vec3::new(i.x, i.y, -i.z);
+            let h = (o + m).normalize();
+            let d = ggx_d(h.z, self.alpha);
+            let t = 1.0 - self.fresnel_dielectric(o.dot(h).max(0.0));
+            let f = tint * (t * d * g2(o, m, self.alpha) / (4.0 * o.z * m.z));
+            let pdf = lobes.transmit * g1(o, self.alpha) * d / (4.0 * o.z);
+            return (f, pdf);
+        }
+        // Rough dielectric refraction (Walter et al. 2007), radiance scaled by 1 / eta^2.
+        let eta = self.eta;
+        let mut h = (o + i * eta).normalize_or_zero();
+        if h.z < 0.0 {
+            h = -h;
+        }
+        let (oh, ih) = (o.dot(h), i.dot(h));
+        if h == Vec3::ZERO || oh <= 0.0 || ih >= 0.0 {
+            return (Vec3::ZERO, 0.0);
+        }
+        let denom = (ih + oh / eta) * (ih + oh / eta);
+        let d = ggx_d(h.z, self.alpha);
+        let t = 1.0 - self.fresnel_dielectric(oh);
+        let f = tint
+            * (t * d * g2(o, i, self.alpha) * (ih * oh).abs()
+                / (denom * o.z * i.z.abs() * eta * eta));
+        let pdf = lobes.transmit * g1(o, self.alpha) * d * oh / o.z * ih.abs() / denom;
+        (f, pdf)
+    }
+
+    /// Samples a direction: the reflection and transmission lobes through visible normals (or as
+    /// delta lobes when smooth), the diffuse lobe by cosine.
+    pub(super) fn base_sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        let o = self.frame.to_local(wo);
+        if o.z <= 0.0 {
+            return None;
+        }
+        let lobes = self.lobes(o.z);
+        let smooth = self.alpha == 0.0;
+        let pick_reflect = u_lobe < lobes.reflect;
+        let pick_transmit = !pick_reflect && u_lobe >= lobes.reflect + lobes.diffuse;
+        let out = |i: Vec3, f: Vec3, pdf: f32, delta: bool, straight: bool, eta: f32| {
+            (pdf > 0.0 && f != Vec3::ZERO).then(|| BsdfSample {
+                wi: self.frame.to_world(i),
+                f,
+                pdf,
+                delta,
+                straight,
+                eta,
+            })
+        };
+        if smooth && pick_reflect {
+            let i = Vec3::new(-o.x, -o.y, o.z);
+            return out(i, self.fresnel(o.z) / o.z, lobes.reflect, true, false, 1.0);
+        }
+        if (smooth || self.index_matched()) && pick_transmit {
+            let tint = self.base * ((1.0 - self.metallic) * self.transmission);
+            let t = 1.0 - self.fresnel_dielectric(o.z);
+            if self.thin {
+                return out(-o, tint * (t / o.z), lobes.transmit, true, true, 1.0);
+            }
+            let i = refract(o, self.eta)?;
+            let f = tint * (t / (-i.z * self.eta * self.eta));
+            return out(i, f, lobes.transmit, true, false, self.eta);
+        }
+        let i = if pick_reflect {
+            let h = sample_vndf(o, self.alpha, u);
+            2.0 * o.dot(h) * h - o
+        } else if pick_transmit {
+            let h = sample_vndf(o, self.alpha, u);
+            if self.thin {
+                let r = 2.0 * o.dot(h) * h - o;
+                Vec3::new(r.x, r.y, -r.z)
+            } else {
+                // Refract about the microfacet normal; total internal reflection there gives no
+                // transmitted direction (its energy is the reflection lobe's).
+                let oh = o.dot(h);
+                let sin2_t = (1.0 - oh * oh).max(0.0) / (self.eta * self.eta);
+                if sin2_t >= 1.0 {
+                    return None;
+                }
+                let cos_t = (1.0 - sin2_t).sqrt();
+                -o / self.eta + (oh / self.eta - cos_t) * h
+            }
+        } else {
+            cosine_hemisphere(u)
+        };
+        if i.z == 0.0 || (pick_reflect && i.z < 0.0) || (pick_transmit && i.z > 0.0) {
+            return None;
+        }
+        let (f, pdf) = self.base_eval(o, i);
+        let eta = if i.z < 0.0 && !self.thin {
+            self.eta
+        } else {
+            1.0
+        };
+        out(i, f, pdf, false, false, eta)
+    }
+
+    /// What a shadow ray keeps when it passes straight through this surface from `wo`'s side: the
+    /// transmission of a thin smooth surface (its delta lobe points straight on), zero for any other.
+    pub(super) fn base_straight_transmittance(&self, wo: Vec3) -> Vec3 {
+        if !(self.thin && self.alpha == 0.0 && self.transmits()) {
+            return Vec3::ZERO;
+        }
+        let cos = self.frame.n.dot(wo).abs();
+        self.base
+            * ((1.0 - self.metallic) * self.transmission * (1.0 - self.fresnel_dielectric(cos)))
+    }
+}
+
+/// The direction refracted from local `o` (above) through the macro surface, or None under total
+/// internal reflection.
+fn refract(o: Vec3, eta: f32) -> Option<Vec3> {
+    let sin2_t = (1.0 - o.z * o.z).max(0.0) / (eta * eta);
+    if sin2_t >= 1.0 {
+        return None;
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    Some(Vec3::new(-o.x / eta, -o.y / eta, -cos_t))
+}

@@ -1,0 +1,70 @@
+//! The glTF material extensions layered over the metallic-roughness base: KHR_materials_specular's
+//! colour and textures, KHR_materials_clearcoat and KHR_materials_sheen, as factors and textures.
+
+use glam::Vec3;
+
+use super::TexRef;
+
+/// KHR_materials_clearcoat: a dielectric GGX coat (IOR 1.5) over the whole material.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Clearcoat {
+    /// clearcoatFactor, times the R channel of `factor_tex`.
+    pub factor: f32,
+    pub factor_tex: Option<TexRef>,
+    /// clearcoatRoughnessFactor (perceptual), times the G channel of `roughness_tex`.
+    pub roughness: f32,
+    pub roughness_tex: Option<TexRef>,
+    /// The coat's own normal map; without one the coat follows the interpolated normal.
+    pub normal_tex: Option<TexRef>,
+    pub normal_scale: f32,
+}
+
+/// KHR_materials_sheen: a Charlie sheen (Estevez and Kulla 2017) over the base.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sheen {
+    /// sheenColorFactor (linear), times the RGB of `color_tex` (sRGB).
+    pub color: Vec3,
+    pub color_tex: Option<TexRef>,
+    /// sheenRoughnessFactor (perceptual), times the A channel of `roughness_tex`.
+    pub roughness: f32,
+    pub roughness_tex: Option<TexRef>,
+}
+
+/// Everything of a material beyond the metallic-roughness base; the default adds nothing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MaterialLayers {
+    /// KHR_materials_specular's A-channel texture, multiplying the specular factor.
+    pub specular_tex: Option<TexRef>,
+    /// specularColorFactor: tints the dielectric F0 (clamped to 1 where it is used).
+    pub specular_color: Vec3,
+    /// specularColorTexture (sRGB RGB), multiplying `specular_color`.
+    pub specular_color_tex: Option<TexRef>,
+    pub clearcoat: Option<Clearcoat>,
+    pub sheen: Option<Sheen>,
+}
+
+impl Default for MaterialLayers {
+    fn default() -> Self {
+        Self {
+            specular_tex: None,
+            specular_color: Vec3::ONE,
+            specular_color_tex: None,
+            clearcoat: None,
+            sheen: None,
+        }
+    }
+}
+
+impl MaterialLayers {
+    /// Every texture slot (bound or not) of the layers.
+    pub fn textures_mut(&mut self) -> impl Iterator<Item = &mut Option<TexRef>> {
+        let mut v = vec![&mut self.specular_tex, &mut self.specular_color_tex];
+        if let Some(c) = &mut self.clearcoat {
+            v.extend([&mut c.factor_tex, &mut c.roughness_tex, &mut c.normal_tex]);
+        }
+        if let Some(s) = &mut self.sheen {
+            v.extend([&mut s.color_tex, &mut s.roughness_tex]);
+        }
+        v.into_iter()
+    }
+}
