@@ -37,6 +37,9 @@ const SUPPORTED_REQUIRED: &[&str] = &[
     "KHR_materials_ior",
     "KHR_materials_volume",
     "KHR_texture_transform",
+    // Integer attributes (normalized or not) are what the accessor reader decodes anyway; the
+    // dequantizing scale and offset live in node transforms and texture transforms.
+    "KHR_mesh_quantization",
 ];
 
 /// One morph target's position and normal displacements.
