@@ -5,6 +5,7 @@ use glam::{Vec3, Vec4};
 use gltf::json::Value;
 
 use super::Loader;
+use crate::scene::mesh::UV_SETS;
 use crate::scene::{AlphaMode, Material, TexRef};
 
 /// KHR_texture_transform as a row-major 2x3 matrix: T * R * S.
@@ -137,16 +138,20 @@ impl Loader<'_> {
     }
 
     fn tex_ref(&mut self, info: TexInfo, srgb: bool, label: &str) -> Option<TexRef> {
-        if info.tex_coord != 0 {
+        let mut tex_coord = info.tex_coord;
+        if tex_coord as usize >= UV_SETS {
             self.scene.warnings.push(format!(
-                "{label}: texture {} uses TEXCOORD_{}; glint reads only TEXCOORD_0",
-                info.texture, info.tex_coord
+                "{label}: texture {} uses TEXCOORD_{tex_coord}; glint reads sets 0 to {}, so it reads set 0",
+                info.texture,
+                UV_SETS - 1
             ));
+            tex_coord = 0;
         }
         let t = self.texture(info.texture, srgb)?;
         Some(TexRef {
             texture: t,
             uv_transform: info.transform,
+            tex_coord,
         })
     }
 
