@@ -59,10 +59,11 @@ fn quantized_variants_render_like_their_originals() {
         // Both through the original's camera, so that framing differences cannot hide.
         let (orig, camera) = common::load_for_render(&original, s.width, s.height);
         let (quant, _) = common::load_for_render(&quantized, s.width, s.height);
-        for (b, (a, q)) in common::render_backends()
-            .into_iter()
-            .zip(renders(&orig, &camera).iter().zip(&renders(&quant, &camera)))
-        {
+        for (b, (a, q)) in common::render_backends().into_iter().zip(
+            renders(&orig, &camera)
+                .iter()
+                .zip(&renders(&quant, &camera)),
+        ) {
             let d = rel_mad(a, q);
             eprintln!("{}: {b}: relative MAD {d:.2e}", quantized.display());
             assert!(a.mean_rgb() > 1e-3, "{}: black render", original.display());
@@ -132,7 +133,10 @@ fn textures_read_their_own_coordinate_sets() {
             let same = rel_mad(a, b);
             let set0 = rel_mad(a, c);
             eprintln!("{f}: swapped sets {same:.2e}, everything on set 0 {set0:.2e}");
-            assert!(same < 1e-4, "{f}: swapping the sets changed the render by {same}");
+            assert!(
+                same < 1e-4,
+                "{f}: swapping the sets changed the render by {same}"
+            );
             assert!(set0 > 1e-3, "{f}: set 1 makes no difference ({set0})");
         }
     }
@@ -180,7 +184,12 @@ fn gpu_instancing_places_every_instance() {
     let mut places: Vec<[i64; 3]> = scene
         .instances
         .iter()
-        .map(|i| (i.to_world.w_axis.truncate() * 1000.0).round().as_i64vec3().to_array())
+        .map(|i| {
+            (i.to_world.w_axis.truncate() * 1000.0)
+                .round()
+                .as_i64vec3()
+                .to_array()
+        })
         .collect();
     places.sort();
     places.dedup();

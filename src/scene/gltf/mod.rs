@@ -299,7 +299,10 @@ impl Loader<'_> {
         placed: &mut Placed,
     ) -> Result<(), GltfError> {
         let ni = node.index() as u32;
-        if let Some(locals) = self.gpu_instances(node).map_err(|e| e.at(node_label(node)))? {
+        if let Some(locals) = self
+            .gpu_instances(node)
+            .map_err(|e| e.at(node_label(node)))?
+        {
             return self.place_gpu_instances(node, mesh, world, &locals);
         }
         for prim in mesh.primitives() {

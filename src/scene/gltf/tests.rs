@@ -643,11 +643,16 @@ fn write_attrs(
   "extensionsUsed": ["KHR_mesh_quantization"], "extensionsRequired": ["KHR_mesh_quantization"],
   "buffers": [{{"byteLength": {len}, "uri": "data:application/octet-stream;base64,{b64}"}}],
   "bufferViews": [{views}], "accessors": [{accs}],
-  "meshes": [{{"primitives": [{{"attributes": {{{attrs}}}}}]}}], "nodes": [{{"mesh": 0}}] {extra}}}"#,
+  "meshes": [{{"primitives": [{{"attributes": {{{attrs}}}{material}}}]}}], "nodes": [{{"mesh": 0}}] {extra}}}"#,
         len = data.len(),
         b64 = base64(&data),
         views = views.join(","),
         accs = accs.join(","),
+        material = if extra.contains("\"materials\"") {
+            r#", "material": 0"#
+        } else {
+            ""
+        },
     );
     let p = dir.path().join("q.gltf");
     std::fs::write(&p, json).unwrap();
@@ -685,7 +690,12 @@ fn quantized_attributes_of_every_component_type() {
         ];
         let mut attrs = r#""POSITION": 0, "TEXCOORD_0": 1, "TEXCOORD_1": 2"#.to_string();
         if signed {
-            accs.push((ct, "VEC3", true, ints(ct, &[0, 0, nz, 0, 0, nz, 0, 0, -nz - 1])));
+            accs.push((
+                ct,
+                "VEC3",
+                true,
+                ints(ct, &[0, 0, nz, 0, 0, nz, 0, 0, -nz - 1]),
+            ));
             attrs += r#", "NORMAL": 3"#;
         }
         let p = write_attrs(&dir, &accs, &attrs, "");
@@ -718,7 +728,12 @@ fn vertex_colours_rgb_and_rgba_float_and_normalized() {
             [0.2, 0.4, 1.0, 0.8],
         ),
         (
-            (5123, "VEC4", true, ints(5123, &[65535, 0, 13107, 32768].repeat(3))),
+            (
+                5123,
+                "VEC4",
+                true,
+                ints(5123, &[65535, 0, 13107, 32768].repeat(3)),
+            ),
             [1.0, 0.0, 0.2, 32768.0 / 65535.0],
         ),
     ];
@@ -733,7 +748,11 @@ fn vertex_colours_rgb_and_rgba_float_and_normalized() {
         let s = Scene::load(&p).unwrap_or_else(|e| panic!("{desc}: {e}"));
         let m = &s.meshes[0];
         let want = glam::Vec4::from(want);
-        assert!((m.colors[1] - want).abs().max_element() < 1e-6, "{desc}: {}", m.colors[1]);
+        assert!(
+            (m.colors[1] - want).abs().max_element() < 1e-6,
+            "{desc}: {}",
+            m.colors[1]
+        );
         // The colour multiplies the material's base colour factor at any point of the triangle.
         let mat = &s.materials[m.material as usize];
         let c = s.base_color(mat, m.uv_at(0, 0.3, 0.3));
