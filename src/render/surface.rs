@@ -6,7 +6,7 @@ use glam::{Vec2, Vec3, Vec4Swizzles};
 use super::bsdf::{Bsdf, Coat, Sheen};
 use crate::geometry::Frame;
 use crate::geometry::{Hit, Ray};
-use crate::scene::{Material, MaterialLayers, Scene, TexRef};
+use crate::scene::{Material, MaterialLayers, Scene, TexRef, VertexAttrs};
 
 #[derive(Clone, Copy, Debug)]
 pub struct SurfaceInteraction {
@@ -23,12 +23,13 @@ pub struct SurfaceInteraction {
     pub prim: u32,
 }
 
-fn tex(scene: &Scene, t: Option<TexRef>, uv: Vec2) -> Option<glam::Vec4> {
-    t.map(|t| scene.textures[t.texture as usize].sample(t.apply(uv)))
+/// A texture at the coordinates of the set it reads.
+fn tex(scene: &Scene, t: Option<TexRef>, uv: VertexAttrs) -> Option<glam::Vec4> {
+    t.map(|t| scene.textures[t.texture as usize].sample(t.uv_of(&uv)))
 }
 
 /// What a surface sends towards the viewer by itself: an unlit material's base colour, or emission.
-fn radiance(scene: &Scene, mat: &Material, uv: Vec2) -> Vec3 {
+fn radiance(scene: &Scene, mat: &Material, uv: VertexAttrs) -> Vec3 {
     if mat.unlit {
         scene.base_color(mat, uv).xyz()
     } else {
@@ -36,8 +37,8 @@ fn radiance(scene: &Scene, mat: &Material, uv: Vec2) -> Vec3 {
     }
 }
 
-/// Emitted radiance of a material at a texture coordinate.
-pub fn emission(scene: &Scene, mat: &Material, uv: Vec2) -> Vec3 {
+/// Emitted radiance of a material at a point's texture coordinates.
+pub fn emission(scene: &Scene, mat: &Material, uv: VertexAttrs) -> Vec3 {
     match tex(scene, mat.emissive_tex, uv) {
         Some(t) => mat.emissive * t.xyz(),
         None => mat.emissive,
@@ -102,7 +103,7 @@ impl SurfaceInteraction {
         Self {
             p,
             ng,
-            uv,
+            uv: uv.sets[0],
             bsdf,
             emission: radiance(scene, mat, uv),
             unlit: mat.unlit,
@@ -120,13 +121,13 @@ impl SurfaceInteraction {
         let s = scene.csg[object as usize].surface(surface, ray.at(hit.t), ray.time);
         let mat = &scene.materials[s.material as usize];
         let ng = if s.n.dot(ray.d) > 0.0 { -s.n } else { s.n };
-        let uv = Vec2::ZERO;
+        let uv = VertexAttrs::from_uv(Vec2::ZERO);
         // The primitive's normal points out of the solid (subtracted surfaces flipped).
         let entering = s.n.dot(ray.d) < 0.0;
         Self {
             p: s.p,
             ng,
-            uv,
+            uv: uv.sets[0],
             bsdf: material_bsdf(scene, mat, uv, (ng, ng), entering),
             emission: radiance(scene, mat, uv),
             unlit: mat.unlit,
@@ -145,12 +146,13 @@ fn mapped_normal(
     n: Vec3,
     ng: Vec3,
     to_world: &glam::Mat4,
-    uv: Vec2,
+    uv: VertexAttrs,
 ) -> Vec3 {
     let Some(nm) = tex(scene, map.0, uv) else {
         return n;
     };
-    let Some((t, b)) = tangent_frame(scene, hit, n, to_world) else {
+    let set = map.0.map_or(0, |t| t.tex_coord as usize);
+    let Some((t, b)) = tangent_frame(scene, hit, n, to_world, set) else {
         return n;
     };
     let m = nm.xyz() * 2.0 - Vec3::ONE;
@@ -169,7 +171,7 @@ fn mapped_normal(
 fn material_bsdf(
     scene: &Scene,
     mat: &Material,
-    uv: Vec2,
+    uv: VertexAttrs,
     (n, coat_n): (Vec3, Vec3),
     entering: bool,
 ) -> Bsdf {
@@ -202,7 +204,7 @@ fn material_bsdf(
 
 /// KHR_materials_specular's colour, the clearcoat and the sheen, textures applied; a layer whose
 /// weight comes to 0 here is left off (and costs nothing).
-fn add_layers(scene: &Scene, l: &MaterialLayers, uv: Vec2, coat_n: Vec3, bsdf: &mut Bsdf) {
+fn add_layers(scene: &Scene, l: &MaterialLayers, uv: VertexAttrs, coat_n: Vec3, bsdf: &mut Bsdf) {
     bsdf.specular_color = match tex(scene, l.specular_color_tex, uv) {
         Some(t) => l.specular_color * t.xyz(),
         None => l.specular_color,
@@ -249,8 +251,15 @@ fn valid_reflection_normal(n: Vec3, ng: Vec3, wo: Vec3) -> Vec3 {
 }
 
 /// Tangent and bitangent for normal mapping, orthogonalised against `n`: from the mesh's tangents when
-/// it has them, otherwise from the triangle's UV parameterisation.
-fn tangent_frame(scene: &Scene, hit: &Hit, n: Vec3, to_world: &glam::Mat4) -> Option<(Vec3, Vec3)> {
+/// it has them, otherwise from the parameterisation of UV set `set` (the normal texture's) over the
+/// triangle.
+fn tangent_frame(
+    scene: &Scene,
+    hit: &Hit,
+    n: Vec3,
+    to_world: &glam::Mat4,
+    set: usize,
+) -> Option<(Vec3, Vec3)> {
     let inst = &scene.instances[hit.inst as usize];
     let mesh = &scene.meshes[inst.mesh as usize];
     let [i0, i1, i2] = mesh.indices[hit.prim as usize].map(|i| i as usize);
@@ -260,11 +269,12 @@ fn tangent_frame(scene: &Scene, hit: &Hit, n: Vec3, to_world: &glam::Mat4) -> Op
         let t = to_world.transform_vector3(t4.xyz());
         (t, if mesh.tangents[i0].w < 0.0 { -1.0 } else { 1.0 })
     } else {
-        if mesh.uvs.is_empty() {
+        let uvs = mesh.uv_set(set);
+        if uvs.is_empty() {
             return None;
         }
         let [p0, p1, p2] = [i0, i1, i2].map(|i| to_world.transform_point3(mesh.positions[i]));
-        let [t0, t1, t2] = [i0, i1, i2].map(|i| mesh.uvs[i]);
+        let [t0, t1, t2] = [i0, i1, i2].map(|i| uvs[i]);
         let (e1, e2) = (p1 - p0, p2 - p0);
         let (d1, d2) = (t1 - t0, t2 - t0);
         let det = d1.x * d2.y - d1.y * d2.x;

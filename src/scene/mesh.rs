@@ -18,6 +18,34 @@ pub struct Mesh {
     pub tangents: Vec<Vec4>,
     pub indices: Vec<[u32; 3]>,
     pub material: u32,
+    /// Texture coordinates of sets 1.. (`uv_sets[k]` is set k + 1, below `UV_SETS`); each empty when
+    /// the file has no such set.
+    pub uv_sets: Vec<Vec<Vec2>>,
+    /// Linear RGBA vertex colours (glTF COLOR_0, alpha 1 for RGB), multiplying the base colour; empty
+    /// when the file has none.
+    pub colors: Vec<Vec4>,
+}
+
+/// Texture coordinate sets a mesh can hold (TEXCOORD_0 to TEXCOORD_3).
+pub const UV_SETS: usize = 4;
+
+/// What textures read at a point of a mesh: the coordinates of every set and the vertex colour.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VertexAttrs {
+    pub sets: [Vec2; UV_SETS],
+    pub color: Vec4,
+}
+
+impl VertexAttrs {
+    /// Set 0 at `uv`, the other sets zero, white: a surface without vertex attributes (CSG).
+    pub fn from_uv(uv: Vec2) -> Self {
+        let mut sets = [Vec2::ZERO; UV_SETS];
+        sets[0] = uv;
+        Self {
+            sets,
+            color: Vec4::ONE,
+        }
+    }
 }
 
 impl Mesh {
@@ -39,13 +67,30 @@ impl Mesh {
         Aabb::from_points(self.positions.iter().copied())
     }
 
-    /// Texture coordinates at barycentrics `(u, v)` of a triangle; zero when the mesh has none.
-    pub fn uv_at(&self, prim: u32, u: f32, v: f32) -> Vec2 {
-        if self.uvs.is_empty() {
-            return Vec2::ZERO;
+    /// Texture coordinate set `k` (empty when the mesh has none).
+    pub fn uv_set(&self, k: usize) -> &[Vec2] {
+        match k {
+            0 => &self.uvs,
+            _ => self.uv_sets.get(k - 1).map_or(&[], Vec::as_slice),
         }
-        let [a, b, c] = self.indices[prim as usize];
-        self.uvs[a as usize] * (1.0 - u - v) + self.uvs[b as usize] * u + self.uvs[c as usize] * v
+    }
+
+    /// Texture coordinates of every set (zero where the mesh has none) and the vertex colour (white
+    /// without one) at barycentrics `(u, v)` of a triangle.
+    pub fn uv_at(&self, prim: u32, u: f32, v: f32) -> VertexAttrs {
+        let [a, b, c] = self.indices[prim as usize].map(|i| i as usize);
+        let w = 1.0 - u - v;
+        let mut out = VertexAttrs::from_uv(Vec2::ZERO);
+        for (k, set) in out.sets.iter_mut().enumerate() {
+            let t = self.uv_set(k);
+            if !t.is_empty() {
+                *set = t[a] * w + t[b] * u + t[c] * v;
+            }
+        }
+        if !self.colors.is_empty() {
+            out.color = self.colors[a] * w + self.colors[b] * u + self.colors[c] * v;
+        }
+        out
     }
 }
 
@@ -120,6 +165,10 @@ impl Mesh {
         self.normals = pick_or_clear(&self.normals, &order, nv);
         self.uvs = pick_or_clear(&self.uvs, &order, nv);
         self.tangents = pick_or_clear(&self.tangents, &order, nv);
+        self.colors = pick_or_clear(&self.colors, &order, nv);
+        for set in &mut self.uv_sets {
+            *set = pick_or_clear(set, &order, nv);
+        }
         for t in &mut self.indices {
             for k in t.iter_mut() {
                 *k = remap[*k as usize];
@@ -128,15 +177,26 @@ impl Mesh {
         Some(order)
     }
 
-    /// Clears UVs and tangents that do not match the vertices; non-finite UVs become zero.
+    /// Clears UVs, colours and tangents that do not match the vertices; non-finite UVs become zero
+    /// and non-finite colours white.
     fn repair_attributes(&mut self) {
         let n = self.positions.len();
-        if self.uvs.len() != n {
-            self.uvs.clear();
+        for set in std::iter::once(&mut self.uvs).chain(&mut self.uv_sets) {
+            if set.len() != n {
+                set.clear();
+            }
+            for uv in set.iter_mut() {
+                if !uv.is_finite() {
+                    *uv = Vec2::ZERO;
+                }
+            }
         }
-        for uv in &mut self.uvs {
-            if !uv.is_finite() {
-                *uv = Vec2::ZERO;
+        if self.colors.len() != n {
+            self.colors.clear();
+        }
+        for c in &mut self.colors {
+            if !c.is_finite() {
+                *c = Vec4::ONE;
             }
         }
         if self.tangents.len() != n || self.tangents.iter().any(|t| !t.is_finite()) {

@@ -26,7 +26,7 @@ pub use animation::Animation;
 pub use envmap::EnvMap;
 pub use error::LoadError;
 pub use layers::MaterialLayers;
-pub use mesh::Mesh;
+pub use mesh::{Mesh, VertexAttrs};
 pub use texture::{Texture, Wrap};
 
 /// One placement of a mesh in the world.
@@ -75,12 +75,15 @@ pub enum AlphaMode {
     Blend,
 }
 
-/// A texture binding: which texture, and the KHR_texture_transform applied to the UVs.
+/// A texture binding: which texture, the texture coordinate set it reads, and the
+/// KHR_texture_transform applied to the UVs.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TexRef {
     pub texture: u32,
     /// Row-major 2x3 affine UV transform (identity when the file has none).
     pub uv_transform: [[f32; 3]; 2],
+    /// Texture coordinate set (below `mesh::UV_SETS`).
+    pub tex_coord: u32,
 }
 
 impl TexRef {
@@ -90,7 +93,13 @@ impl TexRef {
         Self {
             texture,
             uv_transform: Self::IDENTITY_UV,
+            tex_coord: 0,
         }
+    }
+
+    /// Where this binding samples its texture at a point with these vertex attributes.
+    pub fn uv_of(&self, attrs: &VertexAttrs) -> Vec2 {
+        self.apply(attrs.sets[(self.tex_coord as usize).min(mesh::UV_SETS - 1)])
     }
 
     pub fn apply(&self, uv: Vec2) -> Vec2 {
@@ -685,10 +694,11 @@ impl Scene {
     }
 
     /// Base colour (linear RGB, alpha) of a material at a texture coordinate.
-    pub fn base_color(&self, mat: &Material, uv: Vec2) -> Vec4 {
+    pub fn base_color(&self, mat: &Material, uv: VertexAttrs) -> Vec4 {
+        let c = mat.base_color * uv.color;
         match mat.base_color_tex {
-            Some(t) => mat.base_color * self.textures[t.texture as usize].sample(t.apply(uv)),
-            None => mat.base_color,
+            Some(t) => c * self.textures[t.texture as usize].sample(t.uv_of(&uv)),
+            None => c,
         }
     }
 }

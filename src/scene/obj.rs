@@ -148,6 +148,7 @@ fn load_inner(path: &Path) -> Result<Scene, LoadError> {
             tangents: Vec::new(),
             indices,
             material,
+            ..Default::default()
         };
         dropped += mesh.clean();
         if mesh.indices.is_empty() {

@@ -69,6 +69,15 @@ pub enum GltfError {
         matrices: usize,
         joints: usize,
     },
+    #[error("EXT_mesh_gpu_instancing: {attribute} names accessor {index}, which does not exist")]
+    InstancingAccessor { attribute: String, index: usize },
+    #[error("EXT_mesh_gpu_instancing: {first} has {count} instances but {other} has {len}")]
+    InstancingCount {
+        first: String,
+        count: usize,
+        other: String,
+        len: usize,
+    },
     #[error("mesh {mesh}: JOINTS_0 names joint {joint} but skin {skin} has {joints}")]
     JointOutOfRange {
         mesh: u32,

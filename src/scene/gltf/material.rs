@@ -6,6 +6,7 @@ use gltf::json::Value;
 
 use super::Loader;
 use crate::scene::layers::{Clearcoat, Sheen};
+use crate::scene::mesh::UV_SETS;
 use crate::scene::{AlphaMode, Material, TexRef};
 
 /// A number of an extension's JSON object, or its default.
@@ -223,16 +224,20 @@ impl Loader<'_> {
     }
 
     fn tex_ref(&mut self, info: TexInfo, srgb: bool, label: &str) -> Option<TexRef> {
-        if info.tex_coord != 0 {
+        let mut tex_coord = info.tex_coord;
+        if tex_coord as usize >= UV_SETS {
             self.scene.warnings.push(format!(
-                "{label}: texture {} uses TEXCOORD_{}; glint reads only TEXCOORD_0",
-                info.texture, info.tex_coord
+                "{label}: texture {} uses TEXCOORD_{tex_coord}; glint reads sets 0 to {}, so it reads set 0",
+                info.texture,
+                UV_SETS - 1
             ));
+            tex_coord = 0;
         }
         let t = self.texture(info.texture, srgb)?;
         Some(TexRef {
             texture: t,
             uv_transform: info.transform,
+            tex_coord,
         })
     }
 

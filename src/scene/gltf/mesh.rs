@@ -7,7 +7,7 @@ use gltf::mesh::Mode;
 use super::accessor::{read_indices, read_vec};
 use super::error::GltfError;
 use super::{Loader, MorphTarget, SkinAttrs};
-use crate::scene::mesh::Cleaned;
+use crate::scene::mesh::{Cleaned, UV_SETS};
 use crate::scene::Mesh;
 
 /// A primitive made a scene mesh, with the per-vertex data posing needs beside it.
@@ -107,6 +107,14 @@ impl Loader<'_> {
         let normals = self.attribute::<3>(prim, gltf::Semantic::Normals, "NORMAL", n)?;
         let uvs = self.attribute::<2>(prim, gltf::Semantic::TexCoords(0), "TEXCOORD_0", n)?;
         let tangents = self.attribute::<4>(prim, gltf::Semantic::Tangents, "TANGENT", n)?;
+        let uv_sets = (1..UV_SETS as u32)
+            .map(|k| {
+                let what = format!("TEXCOORD_{k}");
+                let set = self.attribute::<2>(prim, gltf::Semantic::TexCoords(k), &what, n)?;
+                Ok(set.into_iter().map(Vec2::from).collect())
+            })
+            .collect::<Result<Vec<Vec<Vec2>>, GltfError>>()?;
+        let colors = self.colors(prim, n)?;
         let flat: Vec<u32> = match prim.indices() {
             Some(a) => {
                 let idx = read_indices(&a, self.buffers)?;
@@ -136,6 +144,8 @@ impl Loader<'_> {
             tangents: tangents.into_iter().map(Vec4::from).collect(),
             indices: triangles(prim.mode(), &flat),
             material,
+            uv_sets,
+            colors,
         }))
     }
 
@@ -155,6 +165,26 @@ impl Loader<'_> {
             }
             None => Ok(Vec::new()),
         }
+    }
+
+    /// COLOR_0 as linear RGBA (RGB gets alpha 1); empty when absent.
+    fn colors(&self, prim: &gltf::Primitive, vertices: usize) -> Result<Vec<Vec4>, GltfError> {
+        let Some(a) = prim.get(&gltf::Semantic::Colors(0)) else {
+            return Ok(Vec::new());
+        };
+        let colors: Vec<Vec4> = if a.dimensions() == gltf::accessor::Dimensions::Vec3 {
+            read_vec::<3>(&a, self.buffers, "COLOR_0")?
+                .into_iter()
+                .map(|c| Vec3::from(c).extend(1.0))
+                .collect()
+        } else {
+            read_vec::<4>(&a, self.buffers, "COLOR_0")?
+                .into_iter()
+                .map(Vec4::from)
+                .collect()
+        };
+        check_len("COLOR_0", colors.len(), vertices)?;
+        Ok(colors)
     }
 
     /// JOINTS_0 and WEIGHTS_0 of the kept vertices, when the primitive has both.

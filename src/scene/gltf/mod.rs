@@ -10,6 +10,7 @@ mod accessor;
 mod animation;
 pub mod error;
 mod image;
+mod instancing;
 mod light;
 mod material;
 mod mesh;
@@ -41,6 +42,10 @@ const SUPPORTED: &[&str] = &[
     "KHR_materials_unlit",
     "KHR_materials_volume",
     "KHR_texture_transform",
+    // Integer attributes (normalized or not) are what the accessor reader decodes anyway; the
+    // dequantizing scale and offset live in node transforms and texture transforms.
+    "KHR_mesh_quantization",
+    "EXT_mesh_gpu_instancing",
 ];
 
 /// One morph target's position and normal displacements.
@@ -268,10 +273,7 @@ impl Loader<'_> {
         placed: &mut Placed,
     ) -> Result<(), GltfError> {
         let ni = node.index();
-        let label = match node.name() {
-            Some(n) => format!("node {ni} ('{n}')"),
-            None => format!("node {ni}"),
-        };
+        let label = node_label(node);
         if !world.is_finite() {
             self.scene.warnings.push(format!(
                 "{label}: transform is not finite; its mesh, light and camera are skipped"
@@ -308,6 +310,12 @@ impl Loader<'_> {
         placed: &mut Placed,
     ) -> Result<(), GltfError> {
         let ni = node.index() as u32;
+        if let Some(locals) = self
+            .gpu_instances(node)
+            .map_err(|e| e.at(node_label(node)))?
+        {
+            return self.place_gpu_instances(node, mesh, world, &locals);
+        }
         for prim in mesh.primitives() {
             let Some(m) = self.primitive(mesh, &prim)? else {
                 continue;
@@ -330,6 +338,40 @@ impl Loader<'_> {
         Ok(())
     }
 
+    /// One instance of each primitive per EXT_mesh_gpu_instancing transform (after the node's). They
+    /// stay where the rest pose puts them: the animation moves whole nodes, not their instances.
+    fn place_gpu_instances(
+        &mut self,
+        node: &gltf::Node,
+        mesh: &gltf::Mesh,
+        world: Mat4,
+        locals: &[Mat4],
+    ) -> Result<(), GltfError> {
+        let worlds: Vec<Mat4> = locals.iter().map(|l| world * *l).collect();
+        let bad = worlds
+            .iter()
+            .filter(|m| !m.is_finite() || m.determinant() == 0.0)
+            .count();
+        if bad > 0 {
+            self.scene.warnings.push(format!(
+                "{}: {bad} of {} EXT_mesh_gpu_instancing transforms are not finite or have zero scale; skipped",
+                node_label(node),
+                worlds.len()
+            ));
+        }
+        for prim in mesh.primitives() {
+            let Some(m) = self.primitive(mesh, &prim)? else {
+                continue;
+            };
+            for w in &worlds {
+                if w.is_finite() && w.determinant() != 0.0 {
+                    self.scene.instances.push(Instance::new(m, *w));
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// What the file held, for `glint info`.
     fn count_stats(&mut self) {
         let doc = self.doc;
@@ -343,5 +385,13 @@ impl Loader<'_> {
         stats.cameras = doc.cameras().len();
         stats.animations = doc.animations().len();
         self.scene.stats.triangles = self.scene.triangle_count();
+    }
+}
+
+/// How messages name a node.
+fn node_label(node: &gltf::Node) -> String {
+    match node.name() {
+        Some(n) => format!("node {} ('{n}')", node.index()),
+        None => format!("node {}", node.index()),
     }
 }

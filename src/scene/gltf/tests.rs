@@ -439,6 +439,7 @@ fn texture_transform_rotation_matches_spec() {
     let t = TexRef {
         texture: 0,
         uv_transform: m,
+        tex_coord: 0,
     };
     // The spec's rotation matrix [cos sin; -sin cos] takes (1, 0) to (0, -1).
     let r = t.apply(Vec2::new(1.0, 0.0));
@@ -596,5 +597,166 @@ fn shared_assets_load_with_sane_counts() {
             }
             _ => {}
         }
+    }
+}
+
+/// One triangle whose attributes are the given accessors (component type, type, normalized, bytes),
+/// each in its own buffer view; `attrs` maps attribute names to accessor indices.
+fn write_attrs(
+    dir: &tempfile::TempDir,
+    accessors: &[(u32, &str, bool, Vec<u8>)],
+    attrs: &str,
+    extra: &str,
+) -> PathBuf {
+    let mut data = Vec::new();
+    let (mut views, mut accs) = (Vec::new(), Vec::new());
+    for (i, (ct, ty, norm, bytes)) in accessors.iter().enumerate() {
+        let width: usize = match *ty {
+            "VEC2" => 2,
+            "VEC3" => 3,
+            _ => 4,
+        } * match ct {
+            5120 | 5121 => 1,
+            5122 | 5123 => 2,
+            _ => 4,
+        };
+        // Elements of quantized attributes are padded to 4 bytes (the spec's alignment rule).
+        let stride = width.next_multiple_of(4);
+        let mut padded = Vec::new();
+        for e in bytes.chunks(width) {
+            padded.extend_from_slice(e);
+            padded.resize(padded.len().next_multiple_of(4), 0);
+        }
+        views.push(format!(
+            r#"{{"buffer": 0, "byteOffset": {}, "byteLength": {}, "byteStride": {stride}}}"#,
+            data.len(),
+            padded.len()
+        ));
+        accs.push(format!(
+            r#"{{"bufferView": {i}, "componentType": {ct}, "count": {}, "type": "{ty}", "normalized": {norm}}}"#,
+            bytes.len() / width
+        ));
+        data.extend(padded);
+    }
+    let json = format!(
+        r#"{{"asset": {{"version": "2.0"}},
+  "extensionsUsed": ["KHR_mesh_quantization"], "extensionsRequired": ["KHR_mesh_quantization"],
+  "buffers": [{{"byteLength": {len}, "uri": "data:application/octet-stream;base64,{b64}"}}],
+  "bufferViews": [{views}], "accessors": [{accs}],
+  "meshes": [{{"primitives": [{{"attributes": {{{attrs}}}{material}}}]}}], "nodes": [{{"mesh": 0}}] {extra}}}"#,
+        len = data.len(),
+        b64 = base64(&data),
+        views = views.join(","),
+        accs = accs.join(","),
+        material = if extra.contains("\"materials\"") {
+            r#", "material": 0"#
+        } else {
+            ""
+        },
+    );
+    let p = dir.path().join("q.gltf");
+    std::fs::write(&p, json).unwrap();
+    p
+}
+
+/// Integer components as little-endian bytes of component type `ct`.
+fn ints(ct: u32, v: &[i32]) -> Vec<u8> {
+    v.iter()
+        .flat_map(|&x| match ct {
+            5120 | 5121 => vec![x as u8],
+            _ => (x as u16).to_le_bytes().to_vec(),
+        })
+        .collect()
+}
+
+#[test]
+fn quantized_attributes_of_every_component_type() {
+    let dir = tempfile::tempdir().unwrap();
+    for ct in [5120u32, 5121, 5122, 5123] {
+        let (max, signed) = match ct {
+            5120 => (127.0, true),
+            5121 => (255.0, false),
+            5122 => (32767.0, true),
+            _ => (65535.0, false),
+        };
+        // Plain integer positions, normalized normals (signed types only, as the extension allows)
+        // and both kinds of UVs.
+        let pos = [0, 0, 0, 3, 0, 0, 0, 5, 0];
+        let nz = if signed { max as i32 } else { 0 };
+        let mut accs = vec![
+            (ct, "VEC3", false, ints(ct, &pos)),
+            (ct, "VEC2", true, ints(ct, &[0, 0, 100, 7, 1, 100])),
+            (ct, "VEC2", false, ints(ct, &[0, 0, 2, 1, 1, 9])),
+        ];
+        let mut attrs = r#""POSITION": 0, "TEXCOORD_0": 1, "TEXCOORD_1": 2"#.to_string();
+        if signed {
+            accs.push((
+                ct,
+                "VEC3",
+                true,
+                ints(ct, &[0, 0, nz, 0, 0, nz, 0, 0, -nz - 1]),
+            ));
+            attrs += r#", "NORMAL": 3"#;
+        }
+        let p = write_attrs(&dir, &accs, &attrs, "");
+        let s = Scene::load(&p).unwrap_or_else(|e| panic!("type {ct}: {e}"));
+        let m = &s.meshes[0];
+        assert_eq!(m.positions[1], Vec3::new(3.0, 0.0, 0.0), "type {ct}");
+        assert_eq!(m.positions[2], Vec3::new(0.0, 5.0, 0.0), "type {ct}");
+        assert_eq!(m.uvs[1], Vec2::new(100.0 / max, 7.0 / max), "type {ct}");
+        assert_eq!(m.uv_sets[0][2], Vec2::new(1.0, 9.0), "type {ct}");
+        if signed {
+            // -max - 1 clamps to -1 (the spec's max(c / max, -1)).
+            assert_eq!(m.normals[2], Vec3::new(0.0, 0.0, -1.0), "type {ct}");
+            assert_eq!(m.normals[0], Vec3::Z, "type {ct}");
+        }
+    }
+}
+
+#[test]
+fn vertex_colours_rgb_and_rgba_float_and_normalized() {
+    let dir = tempfile::tempdir().unwrap();
+    let pos: Vec<u8> = TRI.iter().flatten().flat_map(|f| f.to_le_bytes()).collect();
+    let f32s = |v: &[f32]| v.iter().flat_map(|f| f.to_le_bytes()).collect::<Vec<u8>>();
+    let cases: [((u32, &str, bool, Vec<u8>), [f32; 4]); 3] = [
+        (
+            (5126, "VEC3", false, f32s(&[0.25, 0.5, 1.0].repeat(3))),
+            [0.25, 0.5, 1.0, 1.0],
+        ),
+        (
+            (5121, "VEC4", true, [51u8, 102, 255, 204].repeat(3)),
+            [0.2, 0.4, 1.0, 0.8],
+        ),
+        (
+            (
+                5123,
+                "VEC4",
+                true,
+                ints(5123, &[65535, 0, 13107, 32768].repeat(3)),
+            ),
+            [1.0, 0.0, 0.2, 32768.0 / 65535.0],
+        ),
+    ];
+    for (acc, want) in cases {
+        let desc = format!("{} {}", acc.0, acc.1);
+        let p = write_attrs(
+            &dir,
+            &[(5126, "VEC3", false, pos.clone()), acc],
+            r#""POSITION": 0, "COLOR_0": 1"#,
+            r#", "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.5, 1, 1, 1]}}]"#,
+        );
+        let s = Scene::load(&p).unwrap_or_else(|e| panic!("{desc}: {e}"));
+        let m = &s.meshes[0];
+        let want = glam::Vec4::from(want);
+        assert!(
+            (m.colors[1] - want).abs().max_element() < 1e-6,
+            "{desc}: {}",
+            m.colors[1]
+        );
+        // The colour multiplies the material's base colour factor at any point of the triangle.
+        let mat = &s.materials[m.material as usize];
+        let c = s.base_color(mat, m.uv_at(0, 0.3, 0.3));
+        let expect = want * glam::Vec4::new(0.5, 1.0, 1.0, 1.0);
+        assert!((c - expect).abs().max_element() < 1e-6, "{desc}: {c}");
     }
 }
