@@ -82,6 +82,11 @@ pub struct SampleShard {
 pub enum MergeError {
     #[error("no shards to merge")]
     Empty,
+    #[error("{}: {error}", path.display())]
+    Read {
+        path: PathBuf,
+        error: exr::error::Error,
+    },
     #[error("{}: not a glint sample shard (no {what} in its header)", path.display())]
     NotAShard { path: PathBuf, what: &'static str },
     #[error("{}: channel {channel} is missing or not 32-bit unsigned", path.display())]
@@ -223,7 +228,10 @@ pub fn read_sample_shard(path: &Path) -> Result<SampleShard, MergeError> {
         .first_valid_layer()
         .all_attributes()
         .from_file(path)
-        .map_err(|_| read_err("readable EXR layer"))?;
+        .map_err(|error| MergeError::Read {
+            path: path.to_path_buf(),
+            error,
+        })?;
     let layer = &image.layer_data;
     let text = |key: &str| match layer.attributes.other.get(&Text::from(key)) {
         Some(AttributeValue::Text(t)) => Some(t.to_string()),
