@@ -5,7 +5,6 @@ use std::f32::consts::TAU;
 use std::fs;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
-use std::str::FromStr;
 use std::time::Instant;
 
 use glam::{Mat4, Vec3};
@@ -170,36 +169,7 @@ impl FrameNames {
 }
 
 /// One machine's share of the frames: those with `frame % count == index`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Shard {
-    pub index: u32,
-    pub count: u32,
-}
-
-impl FromStr for Shard {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        let (i, n) = s
-            .split_once('/')
-            .ok_or_else(|| format!("'{s}': expected I/N (e.g. 3/8)"))?;
-        let parse = |v: &str, what: &str| {
-            v.trim()
-                .parse::<u32>()
-                .map_err(|e| format!("'{s}': {what} '{v}': {e}"))
-        };
-        let (index, count) = (parse(i, "shard index")?, parse(n, "shard count")?);
-        if count == 0 {
-            return Err(format!("'{s}': the shard count must be at least 1"));
-        }
-        if index >= count {
-            return Err(format!(
-                "'{s}': the shard index must be below the count (0..={})",
-                count - 1
-            ));
-        }
-        Ok(Shard { index, count })
-    }
-}
+pub use crate::film::shard::Shard;
 
 /// Parses a half-open frame range `A..B` (A < B).
 pub fn parse_frame_range(s: &str) -> Result<Range<u32>, String> {
@@ -335,6 +305,8 @@ pub struct Turntable {
     pub settings: RenderSettings,
     /// Stops, applied to PNG frames (EXR stays linear), the same on every frame.
     pub exposure: f32,
+    /// The view transform of PNG frames and of the previews.
+    pub view: film::ViewTransform,
     /// Render frames whose file already exists again.
     pub overwrite: bool,
 }
@@ -359,6 +331,11 @@ impl SequenceReport {
 }
 
 impl Turntable {
+    /// How PNG frames and previews show the linear frames.
+    pub fn display(&self) -> film::Display {
+        film::Display::new(self.exposure, self.view)
+    }
+
     /// The turntable rotation (radians) at `time`, measured in frames from frame 0.
     fn turn(&self, time: f32) -> f32 {
         TAU * time / self.frames as f32
@@ -521,7 +498,7 @@ impl Turntable {
             }
             let t = Instant::now();
             let (image, rays) = self.render_frame(&mut frame_scene, accel, &base_lights, f);
-            film::write(&image, &path, self.exposure)?;
+            film::write_with(&image, &path, &self.display())?;
             report.frame_seconds.push(t.elapsed().as_secs_f64());
             report.rays += rays;
             report.rendered.push(f);
@@ -564,7 +541,11 @@ pub fn missing_frames(names: &FrameNames, frames: u32) -> Vec<u32> {
 }
 
 /// A frame from disk as display RGB: PNG as written, EXR tonemapped as a PNG frame would be.
-pub fn read_display_frame(path: &Path, format: Format, exposure: f32) -> Result<image::RgbImage> {
+pub fn read_display_frame(
+    path: &Path,
+    format: Format,
+    display: &film::Display,
+) -> Result<image::RgbImage> {
     match format {
         Format::Png => Ok(image::open(path)
             .map_err(|source| TurntableError::ReadFrame {
@@ -576,11 +557,7 @@ pub fn read_display_frame(path: &Path, format: Format, exposure: f32) -> Result<
             let img = film::read_exr(path)?;
             let mut out = image::RgbImage::new(img.width as u32, img.height as u32);
             for (o, p) in out.pixels_mut().zip(&img.pixels) {
-                *o = image::Rgb([
-                    film::tonemap(p.x, exposure),
-                    film::tonemap(p.y, exposure),
-                    film::tonemap(p.z, exposure),
-                ]);
+                *o = image::Rgb(display.encode(p.truncate()));
             }
             Ok(out)
         }
@@ -620,7 +597,7 @@ fn downscale(img: image::RgbImage, max_width: u32) -> image::RgbImage {
 pub fn write_gif(
     names: &FrameNames,
     frames: u32,
-    exposure: f32,
+    display: &film::Display,
     out: &Path,
     fps: f32,
     max_width: u32,
@@ -637,7 +614,7 @@ pub fn write_gif(
         let delay = image::Delay::from_numer_denom_ms(1000, fps.round().max(1.0) as u32);
         for f in 0..frames {
             let rgb = downscale(
-                read_display_frame(&names.path(f), names.format(), exposure)?,
+                read_display_frame(&names.path(f), names.format(), display)?,
                 max_width,
             );
             let rgba = image::DynamicImage::ImageRgb8(rgb).to_rgba8();
@@ -651,7 +628,7 @@ pub fn write_gif(
 pub fn write_contact_sheet(
     names: &FrameNames,
     frames: u32,
-    exposure: f32,
+    display: &film::Display,
     out: &Path,
     thumb_width: u32,
 ) -> Result<()> {
@@ -660,7 +637,7 @@ pub fn write_contact_sheet(
     let mut sheet: Option<image::RgbImage> = None;
     for f in 0..frames {
         let thumb = downscale(
-            read_display_frame(&names.path(f), names.format(), exposure)?,
+            read_display_frame(&names.path(f), names.format(), display)?,
             thumb_width,
         );
         let (tw, th) = thumb.dimensions();
@@ -754,6 +731,7 @@ mod tests {
             shutter_angle: 0.0,
             settings: RenderSettings::default(),
             exposure: 0.0,
+            view: Default::default(),
             overwrite: false,
         };
         let base = vec![Light::Point {
@@ -792,6 +770,7 @@ mod tests {
             shutter_angle: 180.0,
             settings,
             exposure: 0.0,
+            view: Default::default(),
             overwrite: false,
         };
         let s = tt.subframes();

@@ -366,3 +366,86 @@ fn verbose_lists_skipped_features_and_the_bench_times_forcing_them() {
         "{table}"
     );
 }
+
+/// `--sample-shard I/N` over four machines, merged, gives the whole render's EXR byte for byte; a
+/// shard of another scene is refused, and a missing one is named.
+#[test]
+fn four_sample_shards_merge_into_the_whole_render() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/demo/demo.glb");
+    let other = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
+    let other = std::fs::read_dir(&other)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.extension().is_some_and(|e| e == "toml"))
+        .unwrap();
+    let base = [
+        "--width",
+        "24",
+        "--height",
+        "16",
+        "--spp",
+        "8",
+        "--seed",
+        "3",
+        "--threads",
+        "2",
+        "-q",
+    ];
+    let render = |input: &std::path::Path, out: &std::path::Path, shard: Option<&str>| {
+        let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_glint"));
+        cmd.arg("render").arg(input).arg("-o").arg(out).args(base);
+        if let Some(s) = shard {
+            cmd.args(["--sample-shard", s]);
+        }
+        let st = cmd.output().unwrap();
+        assert!(
+            st.status.success(),
+            "{}",
+            String::from_utf8_lossy(&st.stderr)
+        );
+    };
+    let whole = dir.path().join("whole.exr");
+    render(&scene, &whole, None);
+    let mut parts = vec![];
+    for i in 0..4 {
+        let p = dir.path().join(format!("part{i}.exr"));
+        render(&scene, &p, Some(&format!("{i}/4")));
+        parts.push(p);
+    }
+    let merge = |parts: &[std::path::PathBuf], out: &std::path::Path| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_glint"))
+            .arg("merge")
+            .args(parts)
+            .arg("-o")
+            .arg(out)
+            .output()
+            .unwrap()
+    };
+    let merged = dir.path().join("merged.exr");
+    let st = merge(&parts, &merged);
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
+    assert_eq!(
+        std::fs::read(&merged).unwrap(),
+        std::fs::read(&whole).unwrap()
+    );
+    // Missing shards are named.
+    let st = merge(&parts[..2], &dir.path().join("m2.exr"));
+    let err = String::from_utf8_lossy(&st.stderr);
+    assert!(!st.status.success() && err.contains("2/4, 3/4"), "{err}");
+    // A shard of another scene is refused.
+    let foreign = dir.path().join("foreign.exr");
+    render(&other, &foreign, Some("3/4"));
+    let mut mixed = parts[..3].to_vec();
+    mixed.push(foreign);
+    let st = merge(&mixed, &dir.path().join("m3.exr"));
+    let err = String::from_utf8_lossy(&st.stderr);
+    assert!(
+        !st.status.success() && err.contains("another scene"),
+        "{err}"
+    );
+}

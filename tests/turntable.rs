@@ -63,6 +63,7 @@ fn setup(scene: Scene, motion: Motion, lights: LightMode, shutter: f32) -> Setup
             ..Default::default()
         },
         exposure: 0.0,
+        view: Default::default(),
         overwrite: false,
     };
     if !defaults::has_own_lights(&scene) {

@@ -5,6 +5,7 @@ use anyhow::{Context, Result};
 use glam::Vec3;
 
 use crate::accel::Backend;
+use crate::film::{Display, ViewTransform};
 use crate::render::job::{DefaultLights, LensOptions, Overrides, Time};
 
 /// What `render` and `turntable` share: image size, sampling, backend, seed, lights, exposure,
@@ -44,6 +45,9 @@ pub struct Args {
     /// Exposure in stops, applied to PNG output (the same on every frame of a sequence).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub exposure: f32,
+    /// View transform of PNG output and previews, after the exposure (EXR stays linear).
+    #[arg(long, value_enum, default_value_t = ViewTransform::KhronosPbrNeutral)]
+    pub view: ViewTransform,
     /// The default light rig (environment + key light), placed relative to the (frame-0) camera.
     #[arg(long, value_enum, default_value_t = DefaultLights::Auto)]
     pub default_lights: DefaultLights,
@@ -67,6 +71,11 @@ impl Args {
             backend: self.backend,
             ..Default::default()
         }
+    }
+
+    /// How PNG output shows the linear image.
+    pub fn display(&self) -> Display {
+        Display::new(self.exposure, self.view)
     }
 
     /// Sizes the global thread pool when `--threads` is given.

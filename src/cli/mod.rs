@@ -3,6 +3,7 @@
 
 pub mod args;
 pub mod bench;
+pub mod merge;
 pub mod render;
 pub mod turntable;
 
@@ -40,6 +41,8 @@ pub enum Command {
     Bench(bench::BenchCommand),
     /// Render a turntable sequence (camera orbit or --spin): resumable, shardable, with previews.
     Turntable(turntable::TurntableArgs),
+    /// Add the sample shards of a still (`render --sample-shard I/N`) into the whole render's image.
+    Merge(merge::MergeArgs),
 }
 
 /// A progress bar on stderr with `template`, hidden when `quiet` or when stderr is not a terminal.
@@ -67,6 +70,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Info { input } => info_command(&input),
         Command::Bench(cmd) => bench::run(cmd),
         Command::Turntable(args) => turntable::run(args),
+        Command::Merge(args) => merge::run(args),
     }
 }
 

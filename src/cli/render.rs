@@ -3,13 +3,14 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{bail, Result};
+use anyhow::{bail, Context, Result};
 use glam::Vec3;
 
 use super::args::{parse_duration, parse_vec3, Args, LensArgs, TimeArgs};
 use super::progress_bar;
 use crate::film::filter::FilterKind;
-use crate::film::{self, Format, Image};
+use crate::film::shard::{self, SampleShard, Shard};
+use crate::film::{self, Display, Format, Image, ViewTransform};
 use crate::render::job::{
     Basics, CameraChoice, CameraRef, Environment, JobOptions, Overrides, Setup, View,
 };
@@ -92,6 +93,10 @@ pub struct RenderArgs {
     /// before the extension (what --spp-map FILE writes elsewhere).
     #[arg(long, value_enum, value_delimiter = ',')]
     pub aov: Vec<Aov>,
+    /// Render only the sample indices i with i mod N == I of every pixel (machine I of N), into an
+    /// .exr shard holding exact sums; `glint merge` adds the N shards into the whole render.
+    #[arg(long, value_name = "I/N")]
+    pub sample_shard: Option<Shard>,
     #[command(flatten)]
     pub lens: LensArgs,
     #[command(flatten)]
@@ -157,6 +162,44 @@ fn aov_path(output: &Path, aov: &str) -> PathBuf {
     output.with_file_name(format!("{stem}.{aov}.{ext}"))
 }
 
+/// A sample shard needs an .exr output and a fixed sample count (the same samples on every machine).
+fn check_sample_shard(args: &RenderArgs) -> Result<()> {
+    if args.sample_shard.is_none() {
+        return Ok(());
+    }
+    if Format::from_path(&args.output)? != Format::Exr {
+        bail!(
+            "{}: --sample-shard writes an .exr shard (exact sums for `glint merge`)",
+            args.output.display()
+        );
+    }
+    if args.adaptive || args.adaptive_mode.is_some() || args.time_budget.is_some() {
+        bail!("--sample-shard needs a fixed --spp: adaptive sampling and --time choose samples per machine");
+    }
+    Ok(())
+}
+
+/// What makes two renders' pixels differ: the glint version, the input file's bytes (and the
+/// environment map's), the job's options and the resolved settings and camera.
+fn settings_hash(args: &RenderArgs, job: &crate::render::job::RenderJob) -> Result<u64> {
+    let read = |p: &Path| std::fs::read(p).with_context(|| format!("reading {}", p.display()));
+    let input = read(&args.input)?;
+    let env = args
+        .env
+        .as_deref()
+        .map(read)
+        .transpose()?
+        .unwrap_or_default();
+    let text = format!(
+        "{}\n{:?}\n{:?}\n{:?}",
+        env!("CARGO_PKG_VERSION"),
+        args.options(),
+        job.settings,
+        job.camera
+    );
+    Ok(shard::settings_hash(&[&input, &env, text.as_bytes()]))
+}
+
 pub fn run(mut args: RenderArgs) -> Result<()> {
     // Fail on a bad output name before spending time on the render.
     Format::from_path(&args.output)?;
@@ -171,6 +214,7 @@ pub fn run(mut args: RenderArgs) -> Result<()> {
             bail!("{}: output folder does not exist", parent.display());
         }
     }
+    check_sample_shard(&args)?;
     args.common.set_threads()?;
 
     let mut warn = |w: &str| eprintln!("warning: {}: {w}", args.input.display());
@@ -182,16 +226,38 @@ pub fn run(mut args: RenderArgs) -> Result<()> {
     if args.verbose {
         eprintln!("{}: {}", args.input.display(), job.features().describe());
     }
-    let out = job.render(&progress);
+    let settings = RenderSettings {
+        sample_shard: args.sample_shard,
+        ..job.settings.clone()
+    };
+    let out = job.render_with(&settings, &progress);
     let (s, stats) = (&job.settings, out.stats);
-    film::write(&out.image, &args.output, args.common.exposure)?;
+    match args.sample_shard {
+        Some(shard) => shard::write_sample_shard(
+            &SampleShard {
+                shard,
+                settings: settings_hash(&args, &job)?,
+                width: s.width,
+                height: s.height,
+                sums: out.sums.clone(),
+            },
+            &args.output,
+        )?,
+        None => film::write_with(&out.image, &args.output, &args.common.display())?,
+    }
     if let Some(path) = &args.spp_map {
         let scale = match Format::from_path(path)? {
             Format::Exr => 1.0,
             Format::Png => 1.0 / stats.max_spp.max(1) as f32,
         };
         let values: Vec<f32> = out.spp.iter().map(|&n| n as f32 * scale).collect();
-        film::write(&Image::from_scalars(s.width, s.height, &values), path, 0.0)?;
+        // Counts are data, not light: shown as they are, no tone curve.
+        let plain = Display::new(0.0, ViewTransform::Standard);
+        film::write_with(
+            &Image::from_scalars(s.width, s.height, &values),
+            path,
+            &plain,
+        )?;
     }
     let spp_text = if stats.min_spp == stats.max_spp {
         format!("{}", stats.max_spp)

@@ -179,14 +179,14 @@ pub fn run(args: TurntableArgs) -> Result<()> {
             turntable::write_gif(
                 &names,
                 args.frames,
-                args.common.exposure,
+                &args.common.display(),
                 p,
                 args.preview_fps,
                 args.preview_width,
             )?;
         }
         if let Some(p) = &args.contact_sheet {
-            turntable::write_contact_sheet(&names, args.frames, args.common.exposure, p, 256)?;
+            turntable::write_contact_sheet(&names, args.frames, &args.common.display(), p, 256)?;
         }
         if !args.common.quiet {
             eprintln!("previews written in {:.2} s", t.elapsed().as_secs_f64());
@@ -244,6 +244,7 @@ fn render_frames(
         shutter_angle,
         settings: job.settings.clone(),
         exposure: args.common.exposure,
+        view: args.common.view,
         overwrite: args.overwrite,
     };
     let progress = progress_bar(

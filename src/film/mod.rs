@@ -2,13 +2,15 @@
 //! Files are written to a temporary name beside the target and renamed, so no half image is ever left.
 
 pub mod filter;
+pub mod shard;
+pub mod view;
 
 use std::fs;
 use std::path::{Path, PathBuf};
 
 use glam::Vec4;
 
-use crate::geometry::colour::linear_to_srgb;
+pub use view::{Display, ViewTransform};
 
 #[derive(Debug, thiserror::Error)]
 pub enum FilmError {
@@ -134,18 +136,6 @@ impl Image {
     }
 }
 
-/// Maps linear radiance to display: exposure (in stops), a soft shoulder for highlights, then sRGB.
-pub fn tonemap(c: f32, exposure: f32) -> u8 {
-    let x = (c * exposure.exp2()).max(0.0);
-    // Reinhard-style shoulder that keeps values below 0.6 almost linear.
-    let y = if x < 0.6 {
-        x
-    } else {
-        0.6 + 0.4 * (1.0 - (-(x - 0.6) / 0.4).exp())
-    };
-    (linear_to_srgb(y.min(1.0)) * 255.0 + 0.5) as u8
-}
-
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
     Png,
@@ -167,12 +157,22 @@ impl Format {
     }
 }
 
-/// Writes the image (format from the extension) through a temporary file and an atomic rename.
+/// Writes the image (format from the extension) through a temporary file and an atomic rename; a
+/// PNG is shown with `exposure` stops through the default view transform.
 pub fn write(image: &Image, path: &Path, exposure: f32) -> Result<(), FilmError> {
+    write_with(
+        image,
+        path,
+        &Display::new(exposure, ViewTransform::default()),
+    )
+}
+
+/// `write`, a PNG shown as `display` says (an EXR is linear and ignores it).
+pub fn write_with(image: &Image, path: &Path, display: &Display) -> Result<(), FilmError> {
     let format = Format::from_path(path)?;
     let tmp = temp_path(path);
     let result = match format {
-        Format::Png => write_png(image, &tmp, exposure),
+        Format::Png => write_png(image, &tmp, display),
         Format::Exr => write_exr(image, &tmp),
     };
     if let Err(source) = result {
@@ -197,15 +197,11 @@ fn temp_path(path: &Path) -> PathBuf {
     path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
 }
 
-fn write_png(image: &Image, path: &Path, exposure: f32) -> Result<(), EncodeError> {
+fn write_png(image: &Image, path: &Path, display: &Display) -> Result<(), EncodeError> {
     // Opaque RGB: the background is what the camera sees there (alpha is kept in EXR).
     let mut buf = Vec::with_capacity(image.width * image.height * 3);
     for p in &image.pixels {
-        buf.extend_from_slice(&[
-            tonemap(p.x, exposure),
-            tonemap(p.y, exposure),
-            tonemap(p.z, exposure),
-        ]);
+        buf.extend_from_slice(&display.encode(p.truncate()));
     }
     image::save_buffer_with_format(
         path,

@@ -21,6 +21,7 @@ pub use integrator::Integrator;
 
 use crate::accel::Accel;
 use crate::film::filter::{Filter, FilterKind};
+use crate::film::shard::{PixelSum, Shard};
 use crate::film::Image;
 use crate::sample::{AnySampler, Dim, Sampler, SamplerKind};
 use crate::scene::features::Features;
@@ -86,6 +87,9 @@ pub struct RenderSettings {
     pub shutter: [f32; 2],
     /// Seconds into the scene's animation at which the frame is taken (see `shutter`).
     pub frame_time: f32,
+    /// Take only the sample indices of this shard in every pixel (non-adaptive renders); the
+    /// shards' `RenderOutput::sums` add up to the whole render's.
+    pub sample_shard: Option<Shard>,
 }
 
 impl Default for RenderSettings {
@@ -106,6 +110,7 @@ impl Default for RenderSettings {
             time_budget: None,
             shutter: [0.0, 0.0],
             frame_time: 0.0,
+            sample_shard: None,
         }
     }
 }
@@ -135,6 +140,8 @@ pub struct RenderOutput {
     pub image: Image,
     pub stats: RenderStats,
     pub spp: Vec<u32>,
+    /// Each pixel's weighted sum of samples and of weights (what a sample shard keeps).
+    pub sums: Vec<PixelSum>,
 }
 
 impl RenderOutput {
@@ -218,6 +225,9 @@ impl Ctx<'_> {
     ) -> u64 {
         let mut rays = 0u64;
         for i in acc.n..to {
+            if self.settings.sample_shard.is_some_and(|s| !s.takes(i)) {
+                continue;
+            }
             sampler.start(x as u32, y as u32, i);
             let (offset, w) = self.filter.sample(sampler.get_2d(Dim::Pixel, 0));
             let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
@@ -495,6 +505,10 @@ pub fn render_full(
         pixels: per_pixel(&tiles, w, h, |a| a.value().as_vec4()),
     };
     let spp = per_pixel(&tiles, w, h, |a| a.n);
+    let sums = per_pixel(&tiles, w, h, |a| PixelSum {
+        sum: a.sum,
+        weight: a.w,
+    });
     let stats = RenderStats {
         rays: rays.into_inner(),
         seconds: start.elapsed().as_secs_f64(),
@@ -503,7 +517,12 @@ pub fn render_full(
         max_spp: spp.iter().copied().max().unwrap_or(0),
         rounds,
     };
-    RenderOutput { image, stats, spp }
+    RenderOutput {
+        image,
+        stats,
+        spp,
+        sums,
+    }
 }
 
 /// Per-pixel squared relative error estimate, averaged over the pixel's 3x3 neighbourhood (so a
