@@ -7,7 +7,7 @@
 //! context differs in size between the two versions). All `unsafe` of the crate's Embree use lives here.
 
 use std::cell::Cell;
-use std::ffi::{c_char, c_void, CStr};
+use std::ffi::{c_char, c_int, c_void, CStr};
 use std::mem::size_of;
 use std::ptr;
 use std::sync::atomic::{AtomicIsize, Ordering};
@@ -182,16 +182,39 @@ unsafe extern "C" fn alpha_filter(args: *const sys::RTCFilterFunctionNArguments)
     }
 }
 
+/// A CSG callback's arguments and the `CsgObject` its geometry carries (`user` picks the user
+/// pointer out of the arguments).
+///
+/// # Safety
+/// `args` points to a callback's arguments from Embree, for a geometry made in `populate`: its
+/// user pointer is a `CsgObject` that outlives the geometry.
+unsafe fn csg_args<'a, A>(
+    args: *const A,
+    user: impl Fn(&A) -> *mut c_void,
+) -> (&'a A, &'a CsgObject) {
+    // SAFETY: per the function's contract.
+    unsafe {
+        let a = &*args;
+        (a, &*(user(a) as *const CsgObject))
+    }
+}
+
+/// The lanes of a packet of `n` that Embree marks active.
+///
+/// # Safety
+/// `valid` must hold `n` lanes and stay readable while the iterator runs.
+unsafe fn valid_lanes(valid: *const c_int, n: usize) -> impl Iterator<Item = usize> {
+    // SAFETY: per the function's contract.
+    (0..n).filter(move |&lane| unsafe { *valid.add(lane) } != 0)
+}
+
 /// Bounds callback of a CSG user geometry (one primitive: the whole object).
 ///
 /// # Safety
 /// Called by Embree only; the user pointer is the `CsgObject` set in `populate`.
 unsafe extern "C" fn csg_bounds(args: *const sys::RTCBoundsFunctionArguments) {
-    // SAFETY: Embree passes valid arguments; the user pointer outlives the geometry (see `populate`).
-    let (args, object) = unsafe {
-        let a = &*args;
-        (a, &*(a.geometryUserPtr as *const CsgObject))
-    };
+    // SAFETY: Embree passes valid arguments of the geometry `populate` made.
+    let (args, object) = unsafe { csg_args(args, |a| a.geometryUserPtr) };
     let b = object.step_bounds(args.timeStep as usize);
     // SAFETY: `bounds_o` points to one RTCBounds for Embree to read.
     unsafe {
@@ -235,24 +258,19 @@ unsafe fn lane_ray(ray: *const u32, n: usize, lane: usize) -> Ray {
 /// Called by Embree only, with an intersect callback's arguments; the user pointer is the
 /// `CsgObject` set in `populate`.
 unsafe extern "C" fn csg_intersect(args: *const sys::RTCIntersectFunctionNArguments) {
-    // SAFETY: Embree passes valid arguments; the user pointer outlives the geometry.
-    let (args, object) = unsafe {
-        let a = &*args;
-        (a, &*(a.geometryUserPtr as *const CsgObject))
-    };
+    // SAFETY: Embree passes valid arguments of the geometry `populate` made.
+    let (args, object) = unsafe { csg_args(args, |a| a.geometryUserPtr) };
     let n = args.N as usize;
     let ray = args.rayhit as *mut u32;
     // RTCRayHitN: 12 ray fields of n lanes, then the hit: Ng_x, Ng_y, Ng_z, u, v, primID, geomID,
     // instID[0].
     // SAFETY: the hit block starts right after the ray block of the same RTCRayHitN.
     let hit = unsafe { ray.add(12 * n) };
-    for lane in 0..n {
-        // SAFETY: `valid` has n lanes; the ray and hit blocks hold n lanes of each field, and the
-        // wrapper handed to Embree (RayHit / padded packets) covers them.
+    // SAFETY: `valid` has n lanes.
+    for lane in unsafe { valid_lanes(args.valid, n) } {
+        // SAFETY: the ray and hit blocks hold n lanes of each field, and the wrapper handed to
+        // Embree (RayHit / padded packets) covers them.
         unsafe {
-            if *args.valid.add(lane) == 0 {
-                continue;
-            }
             let r = lane_ray(ray, n, lane);
             if let Some((t, surface)) = object.intersect(&r) {
                 let put = |base: *mut u32, k: usize, v: u32| *base.add(k * n + lane) = v;
@@ -275,19 +293,14 @@ unsafe extern "C" fn csg_intersect(args: *const sys::RTCIntersectFunctionNArgume
 /// # Safety
 /// As for `csg_intersect`.
 unsafe extern "C" fn csg_occluded(args: *const sys::RTCOccludedFunctionNArguments) {
-    // SAFETY: Embree passes valid arguments; the user pointer outlives the geometry.
-    let (args, object) = unsafe {
-        let a = &*args;
-        (a, &*(a.geometryUserPtr as *const CsgObject))
-    };
+    // SAFETY: Embree passes valid arguments of the geometry `populate` made.
+    let (args, object) = unsafe { csg_args(args, |a| a.geometryUserPtr) };
     let n = args.N as usize;
     let ray = args.ray as *mut u32;
-    for lane in 0..n {
-        // SAFETY: `valid` and the ray block hold n lanes.
+    // SAFETY: `valid` has n lanes.
+    for lane in unsafe { valid_lanes(args.valid, n) } {
+        // SAFETY: the ray block holds n lanes.
         unsafe {
-            if *args.valid.add(lane) == 0 {
-                continue;
-            }
             if object.occluded(&lane_ray(ray, n, lane)) {
                 *ray.add(8 * n + lane) = f32::NEG_INFINITY.to_bits();
             }
@@ -391,14 +404,32 @@ impl EmbreeAccel {
         let scene = Arc::clone(&self.scene);
         // Owned by `self` and released in `Drop`.
         self.top = self.new_scene()?;
+        self.add_instances(&scene)?;
+        self.csg_base = u32::try_from(scene.instances.len())
+            .map_err(|_| AccelError::Embree("too many instances".into()))?;
+        for (k, object) in scene.csg.iter().enumerate() {
+            let id = self
+                .csg_base
+                .checked_add(k as u32)
+                .filter(|&id| id != INVALID_ID)
+                .ok_or_else(|| AccelError::Embree("too many geometries".into()))?;
+            let geom = self.csg_geometry(object)?;
+            self.attach(geom, id, "attaching a CSG geometry")?;
+        }
+        // SAFETY: the top scene is live and fully populated.
+        unsafe { sys::rtcCommitScene(self.top) };
+        self.check("committing the scene")
+    }
 
+    /// One geometry per non-empty instance, its ID the instance index (so hits name their
+    /// instance without a lookup table).
+    fn add_instances(&mut self, scene: &Scene) -> Result<(), AccelError> {
         let mut uses = vec![0usize; scene.meshes.len()];
         for inst in &scene.instances {
             uses[inst.mesh as usize] += 1;
         }
         // Child scene of each shared mesh, built on first use.
         let mut child_of: Vec<Option<sys::RTCScene>> = vec![None; scene.meshes.len()];
-
         for (index, inst) in scene.instances.iter().enumerate() {
             let m = inst.mesh as usize;
             let mesh = &scene.meshes[m];
@@ -417,86 +448,81 @@ impl EmbreeAccel {
             } else {
                 let child = match child_of[m] {
                     Some(c) => c,
-                    None => {
-                        let c = self.child_scene(mesh, alpha)?;
-                        child_of[m] = Some(c);
-                        c
-                    }
+                    None => *child_of[m].insert(self.child_scene(mesh, alpha)?),
                 };
                 let steps = match &inst.motion {
                     Some(motion) => motion.steps.as_slice(),
                     None => std::slice::from_ref(&inst.to_world),
                 };
-                // SAFETY: device and child scene are live and the child is committed; the step count
-                // is set before the per-step transforms, and Embree copies the 16 floats of each
-                // column-major matrix during its call.
-                unsafe {
-                    let g = sys::rtcNewGeometry(self.device, sys::RTCGeometryType::INSTANCE);
-                    if !g.is_null() {
-                        sys::rtcSetGeometryInstancedScene(g, child);
-                        sys::rtcSetGeometryTimeStepCount(g, steps.len() as u32);
-                        for (k, step) in steps.iter().enumerate() {
-                            let cols = step.to_cols_array();
-                            sys::rtcSetGeometryTransform(
-                                g,
-                                k as u32,
-                                sys::RTCFormat::FLOAT4X4_COLUMN_MAJOR,
-                                cols.as_ptr().cast(),
-                            );
-                        }
-                        sys::rtcCommitGeometry(g);
-                    }
-                    g
-                }
+                self.instance(child, steps)
             };
             self.check("creating a geometry")?;
-            // Geometry ID = instance index, so hits name their instance without a lookup table.
-            // SAFETY: `geom` is a live, committed geometry (checked above); the scene takes its own
-            // reference, so ours is released right away.
-            unsafe {
-                sys::rtcAttachGeometryByID(self.top, geom, id);
-                sys::rtcReleaseGeometry(geom);
-            }
-            self.check("attaching a geometry")?;
+            self.attach(geom, id, "attaching a geometry")?;
         }
-        self.csg_base = u32::try_from(scene.instances.len())
-            .map_err(|_| AccelError::Embree("too many instances".into()))?;
-        for (k, object) in scene.csg.iter().enumerate() {
-            let id = self
-                .csg_base
-                .checked_add(k as u32)
-                .filter(|&id| id != INVALID_ID)
-                .ok_or_else(|| AccelError::Embree("too many geometries".into()))?;
-            // SAFETY: the device is live; the user pointer is a CsgObject inside the scene that `self`
-            // keeps alive (through its Arc) and never mutates, so it outlives every callback.
-            let geom = unsafe {
-                let g = sys::rtcNewGeometry(self.device, sys::RTCGeometryType::USER);
-                if !g.is_null() {
-                    sys::rtcSetGeometryUserPrimitiveCount(g, 1);
-                    // A moving object gets its bounds per time step; its callbacks read ray times.
-                    sys::rtcSetGeometryTimeStepCount(g, object.time_steps() as u32);
-                    sys::rtcSetGeometryUserData(g, object as *const CsgObject as *mut c_void);
-                    sys::rtcSetGeometryBoundsFunction(g, Some(csg_bounds), ptr::null_mut());
-                    sys::rtcSetGeometryIntersectFunction(g, Some(csg_intersect));
-                    sys::rtcSetGeometryOccludedFunction(g, Some(csg_occluded));
-                    sys::rtcCommitGeometry(g);
+        Ok(())
+    }
+
+    /// A committed instance of the committed `child`, one transform per time step (NULL when
+    /// Embree fails; the caller checks). The caller owns the returned reference.
+    fn instance(&self, child: sys::RTCScene, steps: &[glam::Mat4]) -> sys::RTCGeometry {
+        // SAFETY: device and child scene are live and the child is committed; the step count is
+        // set before the per-step transforms, and Embree copies the 16 floats of each
+        // column-major matrix during its call.
+        unsafe {
+            let g = sys::rtcNewGeometry(self.device, sys::RTCGeometryType::INSTANCE);
+            if !g.is_null() {
+                sys::rtcSetGeometryInstancedScene(g, child);
+                sys::rtcSetGeometryTimeStepCount(g, steps.len() as u32);
+                for (k, step) in steps.iter().enumerate() {
+                    let cols = step.to_cols_array();
+                    sys::rtcSetGeometryTransform(
+                        g,
+                        k as u32,
+                        sys::RTCFormat::FLOAT4X4_COLUMN_MAJOR,
+                        cols.as_ptr().cast(),
+                    );
                 }
-                g
-            };
-            if geom.is_null() {
-                return Err(self.error("creating a CSG user geometry"));
+                sys::rtcCommitGeometry(g);
             }
-            self.check("creating a CSG user geometry")?;
-            // SAFETY: `geom` is live and committed; the scene keeps its own reference.
-            unsafe {
-                sys::rtcAttachGeometryByID(self.top, geom, id);
-                sys::rtcReleaseGeometry(geom);
-            }
-            self.check("attaching a CSG geometry")?;
+            g
         }
-        // SAFETY: the top scene is live and fully populated.
-        unsafe { sys::rtcCommitScene(self.top) };
-        self.check("committing the scene")
+    }
+
+    /// A committed user geometry whose callbacks trace `object`. The caller owns the returned
+    /// reference.
+    fn csg_geometry(&self, object: &CsgObject) -> Result<sys::RTCGeometry, AccelError> {
+        // SAFETY: the device is live; the user pointer is a CsgObject inside the scene that `self`
+        // keeps alive (through its Arc) and never mutates, so it outlives every callback.
+        let geom = unsafe {
+            let g = sys::rtcNewGeometry(self.device, sys::RTCGeometryType::USER);
+            if !g.is_null() {
+                sys::rtcSetGeometryUserPrimitiveCount(g, 1);
+                // A moving object gets its bounds per time step; its callbacks read ray times.
+                sys::rtcSetGeometryTimeStepCount(g, object.time_steps() as u32);
+                sys::rtcSetGeometryUserData(g, object as *const CsgObject as *mut c_void);
+                sys::rtcSetGeometryBoundsFunction(g, Some(csg_bounds), ptr::null_mut());
+                sys::rtcSetGeometryIntersectFunction(g, Some(csg_intersect));
+                sys::rtcSetGeometryOccludedFunction(g, Some(csg_occluded));
+                sys::rtcCommitGeometry(g);
+            }
+            g
+        };
+        if geom.is_null() {
+            return Err(self.error("creating a CSG user geometry"));
+        }
+        self.check("creating a CSG user geometry")?;
+        Ok(geom)
+    }
+
+    /// Attaches `geom` to the top scene under `id`, handing it our reference.
+    fn attach(&self, geom: sys::RTCGeometry, id: u32, what: &str) -> Result<(), AccelError> {
+        // SAFETY: `geom` is a live, committed geometry (checked by the caller); the scene takes its
+        // own reference, so ours is released right away.
+        unsafe {
+            sys::rtcAttachGeometryByID(self.top, geom, id);
+            sys::rtcReleaseGeometry(geom);
+        }
+        self.check(what)
     }
 
     /// A committed object-space scene holding one mesh, for instancing; owned by `self.children`.

@@ -119,19 +119,24 @@ fn trimmed_mean(mut v: Vec<f64>, trim: f64) -> f64 {
 #[derive(Clone, Debug)]
 pub struct ModeSummary {
     pub mode: Mode,
+    /// Least-squares slope of the corrected RMSE against mean spp, in log-log space.
+    pub slope_rmse_spp: f64,
+    /// On the metrics less the reference's noise, trimmed (what slopes and ratios use).
+    pub corrected: Fit,
+    /// The same on the plain metrics (no noise correction or trimming: outliers count).
+    pub raw: Fit,
+}
+
+/// How one pair of error metrics (RMSE, relMSE) of a mode falls with render time.
+#[derive(Clone, Copy, Debug)]
+pub struct Fit {
     /// Least-squares slopes in log-log space.
     pub slope_rmse_time: f64,
     pub slope_relmse_time: f64,
-    pub slope_rmse_spp: f64,
     /// Time this mode needs to reach the RMSE of `random` at its largest spp, over random's time.
     pub time_ratio_rmse_vs_random: Option<f64>,
     /// Time this mode needs to reach the relMSE of uniform `sobol` at its largest spp, over sobol's.
     pub time_ratio_relmse_vs_sobol: Option<f64>,
-    /// The same on the plain metrics (no noise correction or trimming: outliers count).
-    pub slope_rmse_time_raw: f64,
-    pub slope_relmse_time_raw: f64,
-    pub time_ratio_rmse_vs_random_raw: Option<f64>,
-    pub time_ratio_relmse_vs_sobol_raw: Option<f64>,
 }
 
 pub struct Report {
@@ -158,104 +163,203 @@ pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool)
         ..JobOptions::default()
     };
     let job = RenderJob::prepare(Scene::load(input)?, &opts)?;
-    let base = job.settings.clone();
-    let (width, height) = (base.width, base.height);
-    let hidden = ProgressBar::hidden();
-    let stem = input
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "scene".into());
-    let ref_name = |half: usize| {
-        format!(
-            "reference-{stem}-{}x{}-{}spp-{}{}-d{}-half{half}.exr",
-            width,
-            height,
-            cfg.ref_spp,
-            base.filter,
-            cfg.filter_radius
-                .map(|r| format!("{r}"))
-                .unwrap_or_default(),
-            base.max_depth
-        )
+    let reference = Reference::load_or_render(&job, input, out_dir, cfg, verbose)?;
+    let ladder = Ladder {
+        job: &job,
+        reference: &reference,
+        hidden: ProgressBar::hidden(),
+        trim: cfg.trim,
+        verbose,
     };
-    let ref_path = out_dir.join(ref_name(0));
-    // The reference is two independent halves (ref_spp / 2 each): their mean is the reference, and
-    // their difference estimates the reference's own noise, which is subtracted from each run's
-    // squared error (so a noisy reference does not flatten the curves into a floor).
-    let mut halves = Vec::new();
-    for half in 0..2u64 {
-        let path = out_dir.join(ref_name(half as usize));
-        let img = match film::read_exr(&path) {
-            Ok(img) if img.width == width && img.height == height => {
-                if verbose {
-                    eprintln!("reusing reference half {}", path.display());
-                }
-                img
-            }
-            _ => {
-                if verbose {
-                    eprintln!(
-                        "rendering reference half ({} spp, sobol) to {}",
-                        (cfg.ref_spp / 2).max(1),
-                        path.display()
-                    );
-                }
-                let s = RenderSettings {
-                    spp: (cfg.ref_spp / 2).max(1),
-                    sampler: SamplerKind::Sobol,
-                    // Independent of every ladder run's samples and of the other half.
-                    seed: base.seed ^ (0x5EED_F2EF + half),
-                    ..base.clone()
-                };
-                let out = job.render_with(&s, &hidden);
-                let (img, stats) = (out.image, out.stats);
-                film::write(&img, &path, 0.0)?;
-                if verbose {
-                    eprintln!("  took {:.1} s", stats.seconds);
-                }
-                img
-            }
+    let runs = ladder.run_all(cfg);
+    let summary = summarise(&runs);
+    let report = Report {
+        scene: input.display().to_string(),
+        reference: reference.path,
+        runs,
+        summary,
+    };
+    report.write_csv(
+        &out_dir.join("convergence.csv"),
+        &out_dir.join("summary.csv"),
+    )?;
+    report.plot(&out_dir.join("convergence.png"))?;
+    Ok(report)
+}
+
+/// The converged reference. It is two independent halves (ref_spp / 2 each): their mean is the
+/// reference, and their difference estimates the reference's own noise, which is subtracted from
+/// each run's squared error (so a noisy reference does not flatten the curves into a floor).
+struct Reference {
+    /// The first half's file, named in the report.
+    path: PathBuf,
+    image: Image,
+    /// Per pixel and channel, the estimated variance of `image`.
+    var: Vec<[f64; 3]>,
+}
+
+impl Reference {
+    /// Reads both halves from `out_dir` where a render of the same settings left them, renders
+    /// (and caches) them otherwise.
+    fn load_or_render(
+        job: &RenderJob,
+        input: &Path,
+        out_dir: &Path,
+        cfg: &ConvergenceConfig,
+        verbose: bool,
+    ) -> Result<Self> {
+        let base = &job.settings;
+        let stem = input
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "scene".into());
+        let name = |half: u64| {
+            format!(
+                "reference-{stem}-{}x{}-{}spp-{}{}-d{}-half{half}.exr",
+                base.width,
+                base.height,
+                cfg.ref_spp,
+                base.filter,
+                cfg.filter_radius
+                    .map(|r| format!("{r}"))
+                    .unwrap_or_default(),
+                base.max_depth
+            )
         };
-        halves.push(img);
-    }
-    let mut reference = Image::new(width, height);
-    let mut ref_var = vec![[0.0f64; 3]; width * height];
-    for (i, p) in reference.pixels.iter_mut().enumerate() {
-        let (a, b) = (halves[0].pixels[i], halves[1].pixels[i]);
-        *p = (a + b) * 0.5;
-        for c in 0..3 {
-            let d = (a[c] - b[c]) as f64;
-            ref_var[i][c] = d * d / 4.0;
+        let mut halves = Vec::new();
+        for half in 0..2u64 {
+            let path = out_dir.join(name(half));
+            halves.push(reference_half(job, &path, half, cfg.ref_spp, verbose)?);
         }
+        let (width, height) = (base.width, base.height);
+        let mut image = Image::new(width, height);
+        let mut var = vec![[0.0f64; 3]; width * height];
+        for (i, p) in image.pixels.iter_mut().enumerate() {
+            let (a, b) = (halves[0].pixels[i], halves[1].pixels[i]);
+            *p = (a + b) * 0.5;
+            for c in 0..3 {
+                let d = (a[c] - b[c]) as f64;
+                var[i][c] = d * d / 4.0;
+            }
+        }
+        Ok(Self {
+            path: out_dir.join(name(0)),
+            image,
+            var,
+        })
     }
 
-    let mut runs = Vec::new();
-    let measure = |mode: Mode, param: f64, s: &RenderSettings| -> Run {
-        let out = job.render_with(s, &hidden);
-        // Per pixel: squared error less the reference's estimated variance, absolute and relative.
+    /// Per pixel: squared error less the reference's estimated variance, absolute and relative.
+    fn errors(&self, image: &Image) -> (Vec<f64>, Vec<f64>) {
         let (mut abs, mut rel) = (Vec::new(), Vec::new());
-        for (i, (x, r)) in out.image.pixels.iter().zip(&reference.pixels).enumerate() {
+        for (i, (x, r)) in image.pixels.iter().zip(&self.image.pixels).enumerate() {
             let (mut ea, mut er) = (0.0, 0.0);
             for c in 0..3 {
                 let (xv, rv) = (x[c] as f64, r[c] as f64);
-                let e = (xv - rv) * (xv - rv) - ref_var[i][c];
+                let e = (xv - rv) * (xv - rv) - self.var[i][c];
                 ea += e / 3.0;
                 er += e / (rv * rv + 0.01) / 3.0;
             }
             abs.push(ea);
             rel.push(er);
         }
+        (abs, rel)
+    }
+}
+
+/// One half of the reference: read from `path` when it holds an image of the job's size, else
+/// rendered (Sobol, `ref_spp / 2`) and written there.
+fn reference_half(
+    job: &RenderJob,
+    path: &Path,
+    half: u64,
+    ref_spp: u32,
+    verbose: bool,
+) -> Result<Image> {
+    let base = &job.settings;
+    match film::read_exr(path) {
+        Ok(img) if img.width == base.width && img.height == base.height => {
+            if verbose {
+                eprintln!("reusing reference half {}", path.display());
+            }
+            Ok(img)
+        }
+        _ => {
+            let spp = (ref_spp / 2).max(1);
+            if verbose {
+                eprintln!(
+                    "rendering reference half ({spp} spp, sobol) to {}",
+                    path.display()
+                );
+            }
+            let s = RenderSettings {
+                spp,
+                sampler: SamplerKind::Sobol,
+                // Independent of every ladder run's samples and of the other half.
+                seed: base.seed ^ (0x5EED_F2EF + half),
+                ..base.clone()
+            };
+            let out = job.render_with(&s, &ProgressBar::hidden());
+            film::write(&out.image, path, 0.0)?;
+            if verbose {
+                eprintln!("  took {:.1} s", out.stats.seconds);
+            }
+            Ok(out.image)
+        }
+    }
+}
+
+/// Renders the ladder's runs and measures each against the reference.
+struct Ladder<'a> {
+    job: &'a RenderJob,
+    reference: &'a Reference,
+    hidden: ProgressBar,
+    trim: f64,
+    verbose: bool,
+}
+
+impl Ladder<'_> {
+    /// Every uniform run, then the variance-adaptive and the corner-subdivision ones.
+    fn run_all(&self, cfg: &ConvergenceConfig) -> Vec<Run> {
+        let base = &self.job.settings;
+        let mut runs = Vec::new();
+        for &sampler in &cfg.samplers {
+            for &spp in &cfg.ladder {
+                let s = RenderSettings {
+                    spp,
+                    sampler,
+                    ..base.clone()
+                };
+                runs.push(self.measure(Mode::Uniform(sampler), spp as f64, &s));
+            }
+        }
+        let (min, max) = (cfg.adaptive_min_spp, cfg.adaptive_max_spp);
+        for t in adaptive_targets(cfg, &runs) {
+            let s = adaptive(base, AdaptiveMode::Variance, t, min, max);
+            runs.push(self.measure(Mode::AdaptiveVariance, short(t), &s));
+        }
+        for &t in &cfg.corner_targets {
+            let s = adaptive(base, AdaptiveMode::Corners, t, 4, cfg.corner_max_spp);
+            runs.push(self.measure(Mode::AdaptiveCorners, short(t), &s));
+        }
+        runs
+    }
+
+    fn measure(&self, mode: Mode, param: f64, s: &RenderSettings) -> Run {
+        let out = self.job.render_with(s, &self.hidden);
+        let reference = &self.reference.image;
+        let (abs, rel) = self.reference.errors(&out.image);
         let run = Run {
             mode,
             param,
             mean_spp: out.mean_spp(),
             seconds: out.stats.seconds,
-            rmse: out.image.rmse(&reference),
-            rel_mse: out.image.rel_mse(&reference),
-            rmse_trim: trimmed_mean(abs, cfg.trim).max(1e-12).sqrt(),
-            rel_mse_trim: trimmed_mean(rel, cfg.trim).max(1e-12),
+            rmse: out.image.rmse(reference),
+            rel_mse: out.image.rel_mse(reference),
+            rmse_trim: trimmed_mean(abs, self.trim).max(1e-12).sqrt(),
+            rel_mse_trim: trimmed_mean(rel, self.trim).max(1e-12),
         };
-        if verbose {
+        if self.verbose {
             eprintln!(
                 "  {:<18} {:>8} spp={:>8.1} t={:>8.3}s rmse={:.5} relmse={:.3e} trimmed {:.5} {:.3e}",
                 run.mode,
@@ -269,72 +373,44 @@ pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool)
             );
         }
         run
-    };
-    for &sampler in &cfg.samplers {
-        for &spp in &cfg.ladder {
-            let s = RenderSettings {
-                spp,
-                sampler,
-                ..base.clone()
-            };
-            runs.push(measure(Mode::Uniform(sampler), spp as f64, &s));
-        }
     }
-    // By default the adaptive runs (Sobol) aim at the errors uniform Sobol (or else the first
-    // sampler) reached from the adaptive minimum up, so their curve spans the same range whatever
-    // the scene's noise.
+}
+
+/// Sobol with an adaptive `mode` aiming at `target`.
+fn adaptive(
+    base: &RenderSettings,
+    mode: AdaptiveMode,
+    target: f32,
+    min_spp: u32,
+    max_spp: u32,
+) -> RenderSettings {
+    RenderSettings {
+        sampler: SamplerKind::Sobol,
+        adaptive: mode,
+        target_error: target,
+        min_spp,
+        max_spp,
+        ..base.clone()
+    }
+}
+
+/// The variance-adaptive runs' targets: the configured ones, or by default the errors uniform
+/// Sobol (or else the first sampler) reached from the adaptive minimum up, so their curve spans
+/// the same range whatever the scene's noise.
+fn adaptive_targets(cfg: &ConvergenceConfig, runs: &[Run]) -> Vec<f32> {
+    if !cfg.adaptive_targets.is_empty() {
+        return cfg.adaptive_targets.clone();
+    }
     let uniform = match cfg.samplers.iter().find(|&&k| k == SamplerKind::Sobol) {
         Some(k) => Some(k),
         None => cfg.samplers.first(),
     }
     .map(|&k| Mode::Uniform(k));
-    let derived: Vec<f32> = runs
-        .iter()
+    runs.iter()
         .filter(|r| Some(r.mode) == uniform)
         .filter(|r| r.param >= cfg.adaptive_min_spp as f64 && r.rel_mse > 0.0)
         .map(|r| r.rel_mse.sqrt() as f32)
-        .collect();
-    let targets = if cfg.adaptive_targets.is_empty() {
-        &derived
-    } else {
-        &cfg.adaptive_targets
-    };
-    for &t in targets {
-        let s = RenderSettings {
-            sampler: SamplerKind::Sobol,
-            adaptive: AdaptiveMode::Variance,
-            target_error: t,
-            min_spp: cfg.adaptive_min_spp,
-            max_spp: cfg.adaptive_max_spp,
-            ..base.clone()
-        };
-        runs.push(measure(Mode::AdaptiveVariance, short(t), &s));
-    }
-    for &t in &cfg.corner_targets {
-        let s = RenderSettings {
-            sampler: SamplerKind::Sobol,
-            adaptive: AdaptiveMode::Corners,
-            target_error: t,
-            min_spp: 4,
-            max_spp: cfg.corner_max_spp,
-            ..base.clone()
-        };
-        runs.push(measure(Mode::AdaptiveCorners, short(t), &s));
-    }
-
-    let summary = summarise(&runs);
-    let report = Report {
-        scene: input.display().to_string(),
-        reference: ref_path,
-        runs,
-        summary,
-    };
-    report.write_csv(
-        &out_dir.join("convergence.csv"),
-        &out_dir.join("summary.csv"),
-    )?;
-    report.plot(&out_dir.join("convergence.png"))?;
-    Ok(report)
+        .collect()
 }
 
 fn modes(runs: &[Run]) -> Vec<Mode> {
@@ -390,56 +466,54 @@ fn time_to_reach(points: &[(f64, f64)], target: f64, slope: f64) -> Option<f64> 
 }
 
 fn summarise(runs: &[Run]) -> Vec<ModeSummary> {
-    let of = |m: Mode| runs.iter().filter(|r| r.mode == m).collect::<Vec<_>>();
-    let series = |m: Mode, f: &dyn Fn(&Run) -> f64| -> Vec<(f64, f64)> {
-        of(m).iter().map(|r| (r.seconds, f(r))).collect()
-    };
-    // Targets: the most accurate run of random (RMSE) and of uniform sobol (relMSE).
-    let best = |m: Mode, f: &dyn Fn(&Run) -> f64| {
-        of(m)
-            .iter()
-            .max_by(|a, b| a.param.total_cmp(&b.param))
-            .map(|r| (r.seconds, f(r)))
-    };
-    let (random, sobol) = (
-        Mode::Uniform(SamplerKind::Random),
-        Mode::Uniform(SamplerKind::Sobol),
-    );
-    let random_best = best(random, &|r| r.rmse_trim);
-    let sobol_best = best(sobol, &|r| r.rel_mse_trim);
-    let random_best_raw = best(random, &|r| r.rmse);
-    let sobol_best_raw = best(sobol, &|r| r.rel_mse);
     modes(runs)
         .into_iter()
         .map(|m| {
-            let rm = series(m, &|r| r.rmse_trim);
-            let rel = series(m, &|r| r.rel_mse_trim);
-            let slope_rmse_time = fit_slope(&rm);
-            let slope_relmse_time = fit_slope(&rel);
-            let spp: Vec<(f64, f64)> = of(m).iter().map(|r| (r.mean_spp, r.rmse_trim)).collect();
-            let rm_raw = series(m, &|r| r.rmse);
-            let rel_raw = series(m, &|r| r.rel_mse);
-            let slope_rmse_time_raw = fit_slope(&rm_raw);
-            let slope_relmse_raw = fit_slope(&rel_raw);
+            let spp: Vec<(f64, f64)> = runs
+                .iter()
+                .filter(|r| r.mode == m)
+                .map(|r| (r.mean_spp, r.rmse_trim))
+                .collect();
             ModeSummary {
-                slope_rmse_time_raw,
-                slope_relmse_time_raw: slope_relmse_raw,
-                time_ratio_rmse_vs_random_raw: random_best_raw.and_then(|(t, e)| {
-                    time_to_reach(&rm_raw, e, slope_rmse_time_raw).map(|x| x / t)
-                }),
-                time_ratio_relmse_vs_sobol_raw: sobol_best_raw
-                    .and_then(|(t, e)| time_to_reach(&rel_raw, e, slope_relmse_raw).map(|x| x / t)),
-                time_ratio_rmse_vs_random: random_best
-                    .and_then(|(t, e)| time_to_reach(&rm, e, slope_rmse_time).map(|x| x / t)),
-                time_ratio_relmse_vs_sobol: sobol_best
-                    .and_then(|(t, e)| time_to_reach(&rel, e, slope_relmse_time).map(|x| x / t)),
                 mode: m,
-                slope_rmse_time,
-                slope_relmse_time,
                 slope_rmse_spp: fit_slope(&spp),
+                corrected: Fit::of(runs, m, |r| r.rmse_trim, |r| r.rel_mse_trim),
+                raw: Fit::of(runs, m, |r| r.rmse, |r| r.rel_mse),
             }
         })
         .collect()
+}
+
+impl Fit {
+    /// Mode `m`'s fit of the metrics `rmse` and `rel_mse`; the ratios' targets are the most
+    /// accurate run of random (RMSE) and of uniform sobol (relMSE).
+    fn of(runs: &[Run], m: Mode, rmse: fn(&Run) -> f64, rel_mse: fn(&Run) -> f64) -> Self {
+        let series = |f: fn(&Run) -> f64| -> Vec<(f64, f64)> {
+            runs.iter()
+                .filter(|r| r.mode == m)
+                .map(|r| (r.seconds, f(r)))
+                .collect()
+        };
+        let best = |of: Mode, f: fn(&Run) -> f64| {
+            runs.iter()
+                .filter(|r| r.mode == of)
+                .max_by(|a, b| a.param.total_cmp(&b.param))
+                .map(|r| (r.seconds, f(r)))
+        };
+        let ratio = |points: &[(f64, f64)], best: Option<(f64, f64)>, slope: f64| {
+            best.and_then(|(t, e)| time_to_reach(points, e, slope).map(|x| x / t))
+        };
+        let (rm, rel) = (series(rmse), series(rel_mse));
+        let (slope_rmse_time, slope_relmse_time) = (fit_slope(&rm), fit_slope(&rel));
+        let random = best(Mode::Uniform(SamplerKind::Random), rmse);
+        let sobol = best(Mode::Uniform(SamplerKind::Sobol), rel_mse);
+        Self {
+            slope_rmse_time,
+            slope_relmse_time,
+            time_ratio_rmse_vs_random: ratio(&rm, random, slope_rmse_time),
+            time_ratio_relmse_vs_sobol: ratio(&rel, sobol, slope_relmse_time),
+        }
+    }
 }
 
 fn opt(v: Option<f64>) -> String {
@@ -467,14 +541,14 @@ impl ModeSummary {
     fn columns(&self) -> [Figure; 8] {
         use Figure::{Ratio, Slope};
         [
-            Slope(self.slope_rmse_time),
-            Slope(self.slope_relmse_time),
+            Slope(self.corrected.slope_rmse_time),
+            Slope(self.corrected.slope_relmse_time),
             Slope(self.slope_rmse_spp),
-            Ratio(self.time_ratio_rmse_vs_random),
-            Ratio(self.time_ratio_relmse_vs_sobol),
-            Slope(self.slope_rmse_time_raw),
-            Ratio(self.time_ratio_rmse_vs_random_raw),
-            Ratio(self.time_ratio_relmse_vs_sobol_raw),
+            Ratio(self.corrected.time_ratio_rmse_vs_random),
+            Ratio(self.corrected.time_ratio_relmse_vs_sobol),
+            Slope(self.raw.slope_rmse_time),
+            Ratio(self.raw.time_ratio_rmse_vs_random),
+            Ratio(self.raw.time_ratio_relmse_vs_sobol),
         ]
     }
 }
@@ -547,8 +621,8 @@ impl Report {
                 r.rel_mse,
                 r.rmse_trim,
                 r.rel_mse_trim,
-                m.slope_rmse_time,
-                m.slope_relmse_time,
+                m.corrected.slope_rmse_time,
+                m.corrected.slope_relmse_time,
                 m.slope_rmse_spp
             );
         }
@@ -575,82 +649,10 @@ impl Report {
             let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
             root.fill(&WHITE).map_err(BenchError::plot)?;
             let panels = root.split_evenly((1, 2));
-            let modes = modes(&self.runs);
-            let colors = [RED, BLUE, GREEN, MAGENTA, CYAN, BLACK];
-            for (panel, (name, f)) in panels.iter().zip([
-                ("RMSE", (|r: &Run| r.rmse) as fn(&Run) -> f64),
-                ("relMSE", |r: &Run| r.rel_mse),
-            ]) {
-                let pts: Vec<(f64, f64)> = self
-                    .runs
-                    .iter()
-                    .map(|r| (r.seconds.max(1e-4), f(r).max(1e-12)))
-                    .collect();
-                let (tmin, tmax) = pts
-                    .iter()
-                    .fold((f64::MAX, 0.0f64), |(a, b), p| (a.min(p.0), b.max(p.0)));
-                let (emin, emax) = pts
-                    .iter()
-                    .fold((f64::MAX, 0.0f64), |(a, b), p| (a.min(p.1), b.max(p.1)));
-                let mut chart = ChartBuilder::on(panel)
-                    .caption(
-                        format!("{name} vs render time (legend: fitted slope)"),
-                        ("sans-serif", 18),
-                    )
-                    .margin(12)
-                    .x_label_area_size(36)
-                    .y_label_area_size(70)
-                    .build_cartesian_2d(
-                        (tmin * 0.8..tmax * 1.25).log_scale(),
-                        (emin * 0.8..emax * 1.25).log_scale(),
-                    )
-                    .map_err(BenchError::plot)?;
-                chart
-                    .configure_mesh()
-                    .x_desc("seconds")
-                    .y_desc(name)
-                    .y_label_formatter(&|v| format!("{v:.0e}"))
-                    .draw()
-                    .map_err(BenchError::plot)?;
-                for (i, m) in modes.iter().enumerate() {
-                    let c = colors[i % colors.len()];
-                    let mut series: Vec<(f64, f64)> = self
-                        .runs
-                        .iter()
-                        .filter(|r| &r.mode == m)
-                        .map(|r| (r.seconds.max(1e-4), f(r).max(1e-12)))
-                        .collect();
-                    series.sort_by(|a, b| a.0.total_cmp(&b.0));
-                    let slope = self
-                        .summary
-                        .iter()
-                        .find(|s| &s.mode == m)
-                        .map(|s| {
-                            if name == "RMSE" {
-                                s.slope_rmse_time_raw
-                            } else {
-                                s.slope_relmse_time_raw
-                            }
-                        })
-                        .unwrap_or(f64::NAN);
-                    chart
-                        .draw_series(LineSeries::new(series.clone(), c.stroke_width(2)))
-                        .map_err(BenchError::plot)?
-                        .label(format!("{m} ({slope:.2})"))
-                        .legend(move |(x, y)| {
-                            PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2))
-                        });
-                    chart
-                        .draw_series(series.iter().map(|&p| Circle::new(p, 3, c.filled())))
-                        .map_err(BenchError::plot)?;
-                }
-                chart
-                    .configure_series_labels()
-                    .background_style(WHITE.mix(0.8))
-                    .border_style(BLACK)
-                    .position(SeriesLabelPosition::LowerLeft)
-                    .draw()
-                    .map_err(BenchError::plot)?;
+            let rmse: Panel = ("RMSE", |r| r.rmse, |f| f.slope_rmse_time);
+            let rel_mse: Panel = ("relMSE", |r| r.rel_mse, |f| f.slope_relmse_time);
+            for (area, panel) in panels.iter().zip([rmse, rel_mse]) {
+                self.draw_panel(area, panel)?;
             }
             root.present().map_err(BenchError::plot)?;
         }
@@ -667,7 +669,87 @@ impl Report {
             source,
         })
     }
+
+    /// One panel: the metric of every mode against seconds, each labelled with its raw slope.
+    fn draw_panel(
+        &self,
+        area: &plotters::drawing::DrawingArea<
+            plotters::prelude::BitMapBackend<'_>,
+            plotters::coord::Shift,
+        >,
+        (name, f, slope_of): Panel,
+    ) -> Result<()> {
+        use plotters::prelude::*;
+        let colors = [RED, BLUE, GREEN, MAGENTA, CYAN, BLACK];
+        let pts = self.points(|_| true, f);
+        let (tmin, tmax) = pts
+            .iter()
+            .fold((f64::MAX, 0.0f64), |(a, b), p| (a.min(p.0), b.max(p.0)));
+        let (emin, emax) = pts
+            .iter()
+            .fold((f64::MAX, 0.0f64), |(a, b), p| (a.min(p.1), b.max(p.1)));
+        let mut chart = ChartBuilder::on(area)
+            .caption(
+                format!("{name} vs render time (legend: fitted slope)"),
+                ("sans-serif", 18),
+            )
+            .margin(12)
+            .x_label_area_size(36)
+            .y_label_area_size(70)
+            .build_cartesian_2d(
+                (tmin * 0.8..tmax * 1.25).log_scale(),
+                (emin * 0.8..emax * 1.25).log_scale(),
+            )
+            .map_err(BenchError::plot)?;
+        chart
+            .configure_mesh()
+            .x_desc("seconds")
+            .y_desc(name)
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .draw()
+            .map_err(BenchError::plot)?;
+        for (i, m) in modes(&self.runs).iter().enumerate() {
+            let c = colors[i % colors.len()];
+            let mut series = self.points(|r| &r.mode == m, f);
+            series.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let slope = self
+                .summary
+                .iter()
+                .find(|s| &s.mode == m)
+                .map(|s| slope_of(&s.raw))
+                .unwrap_or(f64::NAN);
+            chart
+                .draw_series(LineSeries::new(series.clone(), c.stroke_width(2)))
+                .map_err(BenchError::plot)?
+                .label(format!("{m} ({slope:.2})"))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2))
+                });
+            chart
+                .draw_series(series.iter().map(|&p| Circle::new(p, 3, c.filled())))
+                .map_err(BenchError::plot)?;
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::LowerLeft)
+            .draw()
+            .map_err(BenchError::plot)
+    }
+
+    /// (seconds, metric) of the runs `keep` keeps, clamped away from zero for the log axes.
+    fn points(&self, keep: impl Fn(&Run) -> bool, f: fn(&Run) -> f64) -> Vec<(f64, f64)> {
+        self.runs
+            .iter()
+            .filter(|r| keep(r))
+            .map(|r| (r.seconds.max(1e-4), f(r).max(1e-12)))
+            .collect()
+    }
 }
+
+/// A plot panel: its metric's name, the metric, and the fitted slope shown in its legend.
+type Panel = (&'static str, fn(&Run) -> f64, fn(&Fit) -> f64);
 
 /// An f32 parameter as the f64 it was written as (0.4, not 0.4000000059604645).
 fn short(t: f32) -> f64 {

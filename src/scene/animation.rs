@@ -333,6 +333,17 @@ pub fn pose(scene: &mut Scene, frame_time: f32, shutter: [f32; 2]) {
     };
     let t_of = |u: f32| frame_time + shutter[0] + u * (shutter[1] - shutter[0]);
     let open = shutter[1] > shutter[0];
+    pose_instances(scene, &anim, t_of, open);
+    // Morphs, then skins, are posed once per frame, in the middle of the shutter (no per-vertex
+    // motion blur).
+    deform_meshes(scene, &anim, t_of(0.5));
+    pose_cameras(scene, &anim, t_of, open);
+    scene.animation = Some(anim);
+}
+
+/// Places every moving rigid instance at ray time 0, with its motion when the shutter is `open`
+/// (skinned instances are left to `deform_meshes`). `t_of` maps ray time to animation time.
+fn pose_instances(scene: &mut Scene, anim: &Animation, t_of: impl Fn(f32) -> f32, open: bool) {
     for &(i, node) in &anim.instances {
         if !anim.moves(node) || anim.skins.iter().any(|s| s.instance == i) {
             continue;
@@ -354,14 +365,17 @@ pub fn pose(scene: &mut Scene, frame_time: f32, shutter: [f32; 2]) {
             });
         }
     }
-    // Morphs, then skins, are posed once per frame, in the middle of the shutter (no per-vertex
-    // motion blur).
-    let t_mid = t_of(0.5);
+}
+
+/// Replaces the vertices of morphed and skinned meshes by their pose at animation time `t`
+/// (a skin deforms its mesh's morphed pose where it has one); skinned instances lose their node
+/// transform.
+fn deform_meshes(scene: &mut Scene, anim: &Animation, t: f32) {
     let mut deformed: Vec<(u32, Vec<Vec3>, Vec<Vec3>)> = anim
         .morphs
         .iter()
         .map(|m| {
-            let (p, n) = m.posed(&anim, t_mid);
+            let (p, n) = m.posed(anim, t);
             (m.mesh, p, n)
         })
         .collect();
@@ -369,9 +383,9 @@ pub fn pose(scene: &mut Scene, frame_time: f32, shutter: [f32; 2]) {
         let (pos, nrm) = match deformed.iter().position(|d| d.0 == skin.mesh) {
             Some(i) => {
                 let (_, p, n) = deformed.swap_remove(i);
-                skin.posed(&anim, t_mid, (&p, &n))
+                skin.posed(anim, t, (&p, &n))
             }
-            None => skin.posed(&anim, t_mid, (&skin.rest_positions, &skin.rest_normals)),
+            None => skin.posed(anim, t, (&skin.rest_positions, &skin.rest_normals)),
         };
         deformed.push((skin.mesh, pos, nrm));
         if let Some(inst) = scene.instances.get_mut(skin.instance as usize) {
@@ -388,6 +402,11 @@ pub fn pose(scene: &mut Scene, frame_time: f32, shutter: [f32; 2]) {
         // Tangents follow poorly under blending; the surface falls back to UV-derived ones.
         mesh.tangents.clear();
     }
+}
+
+/// Places every moving camera (rigidly) at ray time 0, with its motion when the shutter is
+/// `open`.
+fn pose_cameras(scene: &mut Scene, anim: &Animation, t_of: impl Fn(f32) -> f32, open: bool) {
     let unit = Aabb {
         min: Vec3::splat(-1.0),
         max: Vec3::splat(1.0),
@@ -408,7 +427,6 @@ pub fn pose(scene: &mut Scene, frame_time: f32, shutter: [f32; 2]) {
             );
         }
     }
-    scene.animation = Some(anim);
 }
 
 /// A camera's transform keeps rotation and translation only (as the loader does): scale would

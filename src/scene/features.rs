@@ -3,31 +3,48 @@
 
 use super::{Camera, Light, Scene};
 
-/// The rendering features one scene and camera need. Each `false` is a path glint skips: a static
-/// scene builds flat accelerators and never samples time, a pinhole never samples a lens, an opaque
-/// scene's shadow rays stop at the first hit.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Features {
+/// Declares `Features` with one `bool` per feature and `Features::list`, which names them in the
+/// same order (so a new feature cannot be left out of `--verbose`).
+macro_rules! features {
+    ($($(#[$doc:meta])* $field:ident: $name:literal,)*) => {
+        /// The rendering features one scene and camera need. Each `false` is a path glint skips: a
+        /// static scene builds flat accelerators and never samples time, a pinhole never samples a
+        /// lens, an opaque scene's shadow rays stop at the first hit.
+        #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+        pub struct Features {
+            $($(#[$doc])* pub $field: bool,)*
+        }
+
+        impl Features {
+            /// Every feature by name, with whether the scene uses it.
+            pub fn list(&self) -> Vec<(&'static str, bool)> {
+                vec![$(($name, self.$field)),*]
+            }
+        }
+    };
+}
+
+features! {
     /// Instances or the camera move during the shutter: two-level traversal, ray times sampled.
-    pub motion: bool,
+    motion: "motion",
     /// A thin lens: lens positions sampled.
-    pub lens: bool,
+    lens: "lens",
     /// Materials that refract (solid) or pass light (thin walls).
-    pub transmission: bool,
+    transmission: "transmission",
     /// Thin transmissive walls: shadow rays walk through surfaces (the integrator's thin path).
-    pub thin_walls: bool,
-    pub textures: bool,
+    thin_walls: "thin walls",
+    textures: "textures",
     /// Alpha cutouts or blending: hits are filtered during traversal.
-    pub alpha: bool,
+    alpha: "alpha",
     /// Emissive triangles, sampled as area lights.
-    pub emissive_triangles: bool,
+    emissive_triangles: "emissive triangles",
     /// Analytic sphere, disk and rectangle lights.
-    pub area_lights: bool,
-    pub punctual_lights: bool,
-    pub environment: bool,
+    area_lights: "area lights",
+    punctual_lights: "punctual lights",
+    environment: "environment",
     /// An environment map, importance-sampled.
-    pub environment_map: bool,
-    pub csg: bool,
+    environment_map: "environment map",
+    csg: "CSG",
 }
 
 impl Features {
@@ -67,24 +84,6 @@ impl Features {
                 .any(|l| matches!(l, Light::Environment { map: Some(_), .. })),
             csg: !scene.csg.is_empty(),
         }
-    }
-
-    /// Every feature by name, with whether the scene uses it.
-    pub fn list(&self) -> [(&'static str, bool); 12] {
-        [
-            ("motion", self.motion),
-            ("lens", self.lens),
-            ("transmission", self.transmission),
-            ("thin walls", self.thin_walls),
-            ("textures", self.textures),
-            ("alpha", self.alpha),
-            ("emissive triangles", self.emissive_triangles),
-            ("area lights", self.area_lights),
-            ("punctual lights", self.punctual_lights),
-            ("environment", self.environment),
-            ("environment map", self.environment_map),
-            ("CSG", self.csg),
-        ]
     }
 
     /// `uses: a, b; skips: c, d`, for `--verbose`.

@@ -210,6 +210,13 @@ pub fn csg_showcase() -> Scene {
         ..Default::default()
     };
     ground(&mut s, 12.0, 0);
+    s.csg = showcase_back_row();
+    s.csg.extend(showcase_front_row());
+    s
+}
+
+/// The showcase's back row: a box minus a sphere, a lens, a tilted torus.
+fn showcase_back_row() -> Vec<CsgObject> {
     let (box_, sphere) = (
         Shape::Box {
             min: Vec3::splat(-1.0),
@@ -218,7 +225,7 @@ pub fn csg_showcase() -> Scene {
         |center: Vec3, radius: f32| Shape::Sphere { center, radius },
     );
     let t = Mat4::from_translation;
-    s.csg = vec![
+    vec![
         csg(
             Node::difference(vec![prim(box_, 1), prim(sphere(Vec3::ZERO, 1.3), 2)]),
             t(Vec3::new(-3.0, 1.0, 0.0)) * Mat4::from_rotation_y(0.5),
@@ -240,6 +247,14 @@ pub fn csg_showcase() -> Scene {
             ),
             t(Vec3::new(3.0, 1.1, 0.0)) * Mat4::from_rotation_x(1.1),
         ),
+    ]
+}
+
+/// The showcase's front row: a capped cylinder under a cone, a chamfered cube, a drilled
+/// icosphere.
+fn showcase_front_row() -> Vec<CsgObject> {
+    let t = Mat4::from_translation;
+    vec![
         csg(
             Node::union(vec![
                 prim(
@@ -302,8 +317,7 @@ pub fn csg_showcase() -> Scene {
             ]),
             t(Vec3::new(3.3, 0.7, 2.2)) * Mat4::from_rotation_y(-0.5),
         ),
-    ];
-    s
+    ]
 }
 
 /// `n x n` spheres of radius 0.4 a unit apart on a ground plane: CSG spheres, or (`Some(level)`)

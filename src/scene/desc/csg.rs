@@ -270,79 +270,100 @@ impl NodeSpec {
             .transform
             .as_ref()
             .map_or(Mat4::IDENTITY, |t| t.to_mat4());
-        let prim = |shape: Shape, placed: Mat4| Node::Primitive {
-            shape,
-            transform: transform * placed,
-            material,
-        };
-        let op = |op: Op, kids: &[NodeSpec]| -> Result<Node, CsgSpecError> {
-            if kids.is_empty() {
-                return Err(CsgSpecError::NoOperands(op));
+        if let Some((shape, placed)) = self.kind.primitive()? {
+            return Ok(Node::Primitive {
+                shape,
+                transform: transform * placed,
+                material,
+            });
+        }
+        let (op, kids) = match &self.kind {
+            KindSpec::Mesh(name) => {
+                return Ok(Node::Mesh {
+                    mesh: mesh_solid(name)
+                        .ok_or_else(|| CsgSpecError::UnknownMesh(name.clone()))?,
+                    transform,
+                    material,
+                })
             }
-            let children = kids
-                .iter()
-                .map(|k| k.resolve_with(material_index, mesh_solid, material))
-                .collect::<Result<Vec<_>, _>>()?;
-            Ok(Node::Operation {
-                op,
-                children,
-                transform,
-            })
+            KindSpec::Union(k) => (Op::Union, k),
+            KindSpec::Intersection(k) => (Op::Intersection, k),
+            KindSpec::Difference(k) => (Op::Difference, k),
+            _ => unreachable!("primitives are resolved above"),
         };
-        Ok(match &self.kind {
-            KindSpec::Sphere(s) => prim(
-                Shape::Sphere {
-                    center: finite3("sphere", "center", s.center)?,
-                    radius: positive("sphere", "radius", s.radius)?,
-                },
-                Mat4::IDENTITY,
-            ),
+        if kids.is_empty() {
+            return Err(CsgSpecError::NoOperands(op));
+        }
+        let children = kids
+            .iter()
+            .map(|k| k.resolve_with(material_index, mesh_solid, material))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Node::Operation {
+            op,
+            children,
+            transform,
+        })
+    }
+}
+
+impl KindSpec {
+    /// A primitive's shape and its placement in its node's frame (`None` for meshes and
+    /// operations).
+    fn primitive(&self) -> Result<Option<(Shape, Mat4)>, CsgSpecError> {
+        let axial_shape = |what, s, shape: fn(f32, f32) -> Shape| {
+            axial(what, s).map(|(radius, height, m)| Some((shape(radius, height), m)))
+        };
+        let shape = match self {
+            KindSpec::Sphere(s) => Shape::Sphere {
+                center: finite3("sphere", "center", s.center)?,
+                radius: positive("sphere", "radius", s.radius)?,
+            },
             KindSpec::Box(b) => {
                 let (min, max) = (finite3("box", "min", b.min)?, finite3("box", "max", b.max)?);
                 if !min.cmplt(max).all() {
                     return Err(CsgSpecError::BoxOrder { min, max });
                 }
-                prim(Shape::Box { min, max }, Mat4::IDENTITY)
+                Shape::Box { min, max }
             }
             KindSpec::Cylinder(s) => {
-                let (radius, height, m) = axial("cylinder", s)?;
-                prim(Shape::Cylinder { radius, height }, m)
+                return axial_shape("cylinder", s, |radius, height| Shape::Cylinder {
+                    radius,
+                    height,
+                })
             }
             KindSpec::Cone(s) => {
-                let (radius, height, m) = axial("cone", s)?;
-                prim(Shape::Cone { radius, height }, m)
+                return axial_shape("cone", s, |radius, height| Shape::Cone { radius, height })
             }
-            KindSpec::Torus(t) => prim(
-                Shape::Torus {
-                    major: positive("torus", "major_radius", t.major_radius)?,
-                    minor: positive("torus", "minor_radius", t.minor_radius)?,
-                },
-                Mat4::IDENTITY,
-            ),
-            KindSpec::HalfSpace(h) => {
-                let n = finite3("halfspace", "normal", h.normal)?;
-                let len = n.length();
-                if len <= 0.0 {
-                    return Err(CsgSpecError::ZeroNormal);
-                }
-                let n = n / len;
-                let offset = match (h.offset, h.point) {
-                    (Some(o), None) if o.is_finite() => o / len,
-                    (None, Some(p)) => n.dot(finite3("halfspace", "point", p)?),
-                    (None, None) => 0.0,
-                    _ => return Err(CsgSpecError::HalfSpaceOffset),
-                };
-                prim(Shape::HalfSpace { normal: n, offset }, Mat4::IDENTITY)
-            }
-            KindSpec::Mesh(name) => Node::Mesh {
-                mesh: mesh_solid(name).ok_or_else(|| CsgSpecError::UnknownMesh(name.clone()))?,
-                transform,
-                material,
+            KindSpec::Torus(t) => Shape::Torus {
+                major: positive("torus", "major_radius", t.major_radius)?,
+                minor: positive("torus", "minor_radius", t.minor_radius)?,
             },
-            KindSpec::Union(k) => op(Op::Union, k)?,
-            KindSpec::Intersection(k) => op(Op::Intersection, k)?,
-            KindSpec::Difference(k) => op(Op::Difference, k)?,
-        })
+            KindSpec::HalfSpace(h) => h.shape()?,
+            KindSpec::Mesh(_)
+            | KindSpec::Union(_)
+            | KindSpec::Intersection(_)
+            | KindSpec::Difference(_) => return Ok(None),
+        };
+        Ok(Some((shape, Mat4::IDENTITY)))
+    }
+}
+
+impl HalfSpaceSpec {
+    /// The unit normal and offset, from `offset` (scaled with the normal) or a `point` on the plane.
+    fn shape(&self) -> Result<Shape, CsgSpecError> {
+        let n = finite3("halfspace", "normal", self.normal)?;
+        let len = n.length();
+        if len <= 0.0 {
+            return Err(CsgSpecError::ZeroNormal);
+        }
+        let n = n / len;
+        let offset = match (self.offset, self.point) {
+            (Some(o), None) if o.is_finite() => o / len,
+            (None, Some(p)) => n.dot(finite3("halfspace", "point", p)?),
+            (None, None) => 0.0,
+            _ => return Err(CsgSpecError::HalfSpaceOffset),
+        };
+        Ok(Shape::HalfSpace { normal: n, offset })
     }
 }
 

@@ -140,36 +140,44 @@ fn outer() -> f32 {
     45.0
 }
 
+/// `c` scaled by `k`: finite and not negative.
+fn rgb(c: [f32; 3], k: f32) -> Result<Vec3, LightError> {
+    let v = Vec3::from(c) * k;
+    if v.is_finite() && v.min_element() >= 0.0 {
+        Ok(v)
+    } else {
+        Err(LightError::Color)
+    }
+}
+
+fn positive(name: &'static str, v: f32) -> Result<f32, LightError> {
+    if v > 0.0 && v.is_finite() {
+        Ok(v)
+    } else {
+        Err(LightError::NotPositive(name))
+    }
+}
+
+/// The unit normal of an area light: given, or towards `look_at`.
+fn facing(
+    center: Vec3,
+    normal: Option<[f32; 3]>,
+    look_at: Option<[f32; 3]>,
+) -> Result<Vec3, LightError> {
+    let n = match (normal, look_at) {
+        (Some(n), None) => Vec3::from(n),
+        (None, Some(t)) => Vec3::from(t) - center,
+        _ => return Err(LightError::Facing),
+    };
+    let n = n.normalize_or_zero();
+    if n == Vec3::ZERO || !n.is_finite() {
+        return Err(LightError::ZeroFacing);
+    }
+    Ok(n)
+}
+
 impl LightDesc {
     pub(super) fn to_light(&self, dir: &Path) -> Result<Light, LightError> {
-        let rgb = |c: [f32; 3], k: f32| -> Result<Vec3, LightError> {
-            let v = Vec3::from(c) * k;
-            if v.is_finite() && v.min_element() >= 0.0 {
-                Ok(v)
-            } else {
-                Err(LightError::Color)
-            }
-        };
-        let positive = |name: &'static str, v: f32| {
-            if v > 0.0 && v.is_finite() {
-                Ok(v)
-            } else {
-                Err(LightError::NotPositive(name))
-            }
-        };
-        // The unit normal of an area light: given, or towards `look_at`.
-        let facing = |center: Vec3, normal: Option<[f32; 3]>, look_at: Option<[f32; 3]>| {
-            let n = match (normal, look_at) {
-                (Some(n), None) => Vec3::from(n),
-                (None, Some(t)) => Vec3::from(t) - center,
-                _ => return Err(LightError::Facing),
-            };
-            let n = n.normalize_or_zero();
-            if n == Vec3::ZERO || !n.is_finite() {
-                return Err(LightError::ZeroFacing);
-            }
-            Ok(n)
-        };
         Ok(match self {
             LightDesc::Point(p) => Light::Point {
                 position: p.position.into(),
@@ -197,42 +205,7 @@ impl LightDesc {
                 radius: positive("radius", d.radius)?,
                 radiance: rgb(d.color, d.strength)?,
             }),
-            LightDesc::Rect(r) => {
-                let (corner, edge_u, edge_v) =
-                    match (r.center, r.size, r.corner, r.edge_u, r.edge_v) {
-                        (Some(c), Some([w, h]), None, None, None) => {
-                            let c = Vec3::from(c);
-                            let n = facing(c, r.normal, r.look_at)?;
-                            positive("size", w.min(h))?;
-                            // Width along the horizontal most across the normal, height up.
-                            let frame = crate::geometry::Frame::from_normal(n);
-                            let across = if n.cross(Vec3::Y).length() > 1e-3 {
-                                Vec3::Y.cross(n).normalize()
-                            } else {
-                                frame.t
-                            };
-                            let up = n.cross(across);
-                            let (eu, ev) = (across * w, up * h);
-                            (c - 0.5 * (eu + ev), eu, ev)
-                        }
-                        (None, None, Some(c), Some(u), Some(v)) => {
-                            if r.normal.is_some() || r.look_at.is_some() {
-                                return Err(LightError::CornerFacing);
-                            }
-                            (Vec3::from(c), Vec3::from(u), Vec3::from(v))
-                        }
-                        _ => return Err(LightError::RectShape),
-                    };
-                if edge_u.cross(edge_v).length() <= 0.0 {
-                    return Err(LightError::NoArea);
-                }
-                Light::Rect(RectLight {
-                    corner,
-                    edge_u,
-                    edge_v,
-                    radiance: rgb(r.color, r.strength)?,
-                })
-            }
+            LightDesc::Rect(r) => Light::Rect(r.to_rect()?),
             LightDesc::Environment(e) => {
                 let map = match &e.map {
                     Some(p) => Some(std::sync::Arc::new(
@@ -247,6 +220,51 @@ impl LightDesc {
                     map,
                 }
             }
+        })
+    }
+}
+
+impl RectDesc {
+    /// The parallelogram from a centre, size and facing, or from a corner and two edges.
+    fn to_rect(&self) -> Result<RectLight, LightError> {
+        let (corner, edge_u, edge_v) = match (
+            self.center,
+            self.size,
+            self.corner,
+            self.edge_u,
+            self.edge_v,
+        ) {
+            (Some(c), Some([w, h]), None, None, None) => {
+                let c = Vec3::from(c);
+                let n = facing(c, self.normal, self.look_at)?;
+                positive("size", w.min(h))?;
+                // Width along the horizontal most across the normal, height up.
+                let frame = crate::geometry::Frame::from_normal(n);
+                let across = if n.cross(Vec3::Y).length() > 1e-3 {
+                    Vec3::Y.cross(n).normalize()
+                } else {
+                    frame.t
+                };
+                let up = n.cross(across);
+                let (eu, ev) = (across * w, up * h);
+                (c - 0.5 * (eu + ev), eu, ev)
+            }
+            (None, None, Some(c), Some(u), Some(v)) => {
+                if self.normal.is_some() || self.look_at.is_some() {
+                    return Err(LightError::CornerFacing);
+                }
+                (Vec3::from(c), Vec3::from(u), Vec3::from(v))
+            }
+            _ => return Err(LightError::RectShape),
+        };
+        if edge_u.cross(edge_v).length() <= 0.0 {
+            return Err(LightError::NoArea);
+        }
+        Ok(RectLight {
+            corner,
+            edge_u,
+            edge_v,
+            radiance: rgb(self.color, self.strength)?,
         })
     }
 }
