@@ -85,8 +85,11 @@ fn compressed_variants_load_without_new_warnings() {
         let o = Scene::load(&shared.join(original)).unwrap();
         assert!(s.triangle_count() > 0, "{variant}: no triangles");
         assert_eq!(s.triangle_count(), o.triangle_count(), "{variant}");
+        // gltfpack renumbers meshes: compare what the warnings say, not where.
+        let what = |w: &String| w.rsplit(": ").next().unwrap_or(w).to_owned();
+        let known: Vec<String> = o.warnings.iter().map(what).collect();
         for w in &s.warnings {
-            assert!(o.warnings.contains(w), "{variant}: new warning {w}");
+            assert!(known.contains(&what(w)), "{variant}: new warning {w}");
         }
     }
     let s = Scene::load(&asset("webp/boxtextured-webp.glb")).unwrap();
@@ -151,26 +154,41 @@ fn corrupt_meshopt_files_are_errors_naming_the_buffer_view() {
     };
     let cases: Vec<(serde_json::Value, Vec<u8>, &str)> = vec![
         (
-            edit(&|j| *j.pointer_mut(&format!("/bufferViews/1{ext}/byteLength")).unwrap() = 1e9 as u64 .into()),
+            edit(&|j| {
+                *j.pointer_mut(&format!("/bufferViews/1{ext}/byteLength"))
+                    .unwrap() = 1_000_000_000u64.into()
+            }),
             bin.clone(),
             "buffer view 1: meshopt data",
         ),
         (
-            edit(&|j| *j.pointer_mut(&format!("/bufferViews/2{ext}/count")).unwrap() = 4_000_000_000u64.into()),
+            edit(&|j| {
+                *j.pointer_mut(&format!("/bufferViews/2{ext}/count"))
+                    .unwrap() = 4_000_000_000u64.into()
+            }),
             bin.clone(),
             "buffer view 2: meshopt",
         ),
         (
-            edit(&|j| *j.pointer_mut(&format!("/bufferViews/4{ext}/mode")).unwrap() = "STRIPS".into()),
+            edit(&|j| {
+                *j.pointer_mut(&format!("/bufferViews/4{ext}/mode")).unwrap() = "STRIPS".into()
+            }),
             bin.clone(),
             "buffer view 4: invalid meshopt compression object",
         ),
         (
-            edit(&|j| *j.pointer_mut(&format!("/bufferViews/3{ext}/byteStride")).unwrap() = 6.into()),
+            edit(&|j| {
+                *j.pointer_mut(&format!("/bufferViews/3{ext}/byteStride"))
+                    .unwrap() = 6.into()
+            }),
             bin.clone(),
             "buffer view 3: meshopt: byteStride 6",
         ),
-        (json.clone(), vec![0xFF; bin.len()], "buffer view 1: meshopt: corrupt"),
+        (
+            json.clone(),
+            vec![0xFF; bin.len()],
+            "buffer view 1: meshopt: corrupt",
+        ),
     ];
     for (j, b, want) in cases {
         let e = load_err("corrupt-meshopt.glb", &glb(&j, &b));
