@@ -105,6 +105,11 @@ pub(super) fn read_buffers(
             what: what.clone(),
             problem,
         };
+        // A meshopt fallback buffer is never read: its views are decoded from elsewhere.
+        if super::meshopt::is_fallback(&buffer) {
+            out.push(Vec::new());
+            continue;
+        }
         if let gltf::buffer::Source::Uri(uri) = buffer.source() {
             if !uri_decodes(uri) {
                 return Err(fail(BufferProblem::MalformedUri));

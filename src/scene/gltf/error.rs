@@ -28,6 +28,8 @@ pub enum GltfError {
     },
     #[error(transparent)]
     Accessor(#[from] AccessorError),
+    #[error(transparent)]
+    Meshopt(#[from] MeshoptError),
     /// A problem inside the element `at` (a primitive, a skin, an animation channel).
     #[error("{at}: {source}")]
     At { at: String, source: Box<GltfError> },
@@ -208,6 +210,35 @@ pub enum AccessorError {
     IndexType { index: usize, found: DataType },
 }
 
+/// A meshopt-compressed buffer view that cannot be decoded.
+#[derive(Debug, Error)]
+pub enum MeshoptError {
+    #[error("buffer view {view}: invalid meshopt compression object: {source}")]
+    Json {
+        view: usize,
+        source: serde_json::Error,
+    },
+    #[error("buffer view {0}: the COLOR filter needs KHR_meshopt_compression, not EXT_")]
+    ColorFilterInExt(usize),
+    #[error("buffer view {view}: meshopt data in buffer {buffer}, which does not exist")]
+    NoBuffer { view: usize, buffer: usize },
+    #[error(
+        "buffer view {view}: meshopt data (bytes {start}..+{len} of buffer {buffer}) out of \
+         bounds of its {have} bytes"
+    )]
+    OutOfBounds {
+        view: usize,
+        buffer: usize,
+        start: usize,
+        len: usize,
+        have: usize,
+    },
+    #[error("buffer view {view}: meshopt: {problem}")]
+    Stream { view: usize, problem: String },
+    #[error("too many buffers")]
+    TooMany,
+}
+
 /// Why an image is ignored (a warning, not an error: the texture is left out).
 #[derive(Debug, Error)]
 pub enum ImageError {
@@ -223,4 +254,8 @@ pub enum ImageError {
     Source(gltf::Error),
     #[error("decoded image is shorter than its size")]
     Short,
+    #[error("embedded in a buffer view without the mimeType the spec requires")]
+    NoMimeType,
+    #[error("neither a uri nor a buffer view")]
+    NoSource,
 }

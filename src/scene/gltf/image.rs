@@ -58,6 +58,14 @@ impl Loader<'_> {
         if let Some(p) = self.images.get(&i) {
             return p.clone();
         }
+        // `Image::source` unwraps both of these, so they are checked before it is called.
+        if let Err(e) = source_present(self.doc, i) {
+            self.scene
+                .warnings
+                .push(format!("image {i}: {e}; the texture is ignored"));
+            self.images.insert(i, None);
+            return None;
+        }
         let label = match image.source() {
             gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
                 format!("image {i} ('{uri}')")
@@ -106,6 +114,37 @@ impl Loader<'_> {
                 })
             }
         }
+    }
+}
+
+/// Texture extensions whose `source` glint decodes (WebP through the `image` crate).
+const SOURCE_EXTENSIONS: [&str; 1] = ["EXT_texture_webp"];
+
+/// Points every texture at the image of an extension glint decodes, which the spec says a client
+/// that supports the extension uses instead of (or when there is no) core `source`.
+pub(super) fn prefer_extension_sources(root: &mut gltf::json::Root) {
+    for tex in &mut root.textures {
+        let ext = tex.extensions.as_ref().and_then(|e| {
+            SOURCE_EXTENSIONS
+                .iter()
+                .find_map(|n| e.others.get(*n)?.get("source")?.as_u64())
+        });
+        if let Some(src) = ext.and_then(|s| u32::try_from(s).ok()) {
+            tex.source = gltf::json::Index::new(src);
+        }
+    }
+}
+
+/// Whether image `i` has what the `gltf` crate's `Image::source` unwraps: a URI, or a buffer view with
+/// a MIME type (which the spec requires there).
+fn source_present(doc: &gltf::Document, i: usize) -> Result<(), ImageError> {
+    let Some(json) = doc.as_json().images.get(i) else {
+        return Err(ImageError::NoSource);
+    };
+    match (&json.buffer_view, &json.uri) {
+        (Some(_), _) if json.mime_type.is_none() => Err(ImageError::NoMimeType),
+        (None, None) => Err(ImageError::NoSource),
+        _ => Ok(()),
     }
 }
 

@@ -14,11 +14,12 @@ mod instancing;
 mod light;
 mod material;
 mod mesh;
+pub mod meshopt;
+mod quiet_panic;
 #[cfg(test)]
 mod tests;
 
 use std::collections::HashMap;
-use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::Path;
 use std::rc::Rc;
 
@@ -46,6 +47,9 @@ const SUPPORTED: &[&str] = &[
     // dequantizing scale and offset live in node transforms and texture transforms.
     "KHR_mesh_quantization",
     "EXT_mesh_gpu_instancing",
+    "EXT_meshopt_compression",
+    "KHR_meshopt_compression",
+    "EXT_texture_webp",
 ];
 
 /// One morph target's position and normal displacements.
@@ -56,11 +60,11 @@ type SkinAttrs = (Vec<[u16; 4]>, Vec<Vec4>);
 /// Loads a .gltf or .glb file keeping its animation number `animation` (when it has animations).
 /// Never panics on malformed input: every problem is a `LoadError`.
 pub fn load(path: &Path, animation: usize) -> Result<Scene, LoadError> {
-    match catch_unwind(AssertUnwindSafe(|| load_inner(path, animation))) {
-        Ok(r) => r.map_err(|e| LoadError::new(path, e.to_string())),
-        Err(_) => Err(LoadError::new(
+    match quiet_panic::catch(|| load_inner(path, animation)) {
+        Some(r) => r.map_err(|e| LoadError::new(path, e.to_string())),
+        None => Err(LoadError::new(
             path,
-            "malformed glTF (the glTF reader failed on an inconsistent file)",
+            "internal error in the glTF reader (the file is inconsistent in a way glint does not check)",
         )),
     }
 }
@@ -75,7 +79,8 @@ fn load_inner(path: &Path, animation: usize) -> Result<Scene, GltfError> {
         (json, None)
     };
     let doc = document(json_bytes)?;
-    let buffers = accessor::read_buffers(&doc, base, blob)?;
+    let mut buffers = accessor::read_buffers(&doc, base, blob)?;
+    let doc = meshopt::decode_views(doc, &mut buffers)?;
     Loader {
         doc: &doc,
         buffers: &buffers,
@@ -107,6 +112,7 @@ fn document(json: &[u8]) -> Result<gltf::Document, GltfError> {
     // The crate's validation refuses required extensions it has no code for (KHR_materials_volume);
     // glint has checked them above.
     root.extensions_required.clear();
+    image::prefer_extension_sources(&mut root);
     let fallback = root.clone();
     match gltf::Document::from_json(root) {
         Ok(doc) => Ok(doc),
