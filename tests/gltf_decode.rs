@@ -109,11 +109,11 @@ fn glb_parts(path: &Path) -> (serde_json::Value, Vec<u8>) {
 
 fn glb(json: &serde_json::Value, bin: &[u8]) -> Vec<u8> {
     let mut j = serde_json::to_vec(json).unwrap();
-    while j.len() % 4 != 0 {
+    while !j.len().is_multiple_of(4) {
         j.push(b' ');
     }
     let mut bin = bin.to_vec();
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let total = 12 + 8 + j.len() + 8 + bin.len();
@@ -135,10 +135,10 @@ fn load_err(name: &str, bytes: &[u8]) -> String {
     let dir = tempfile::tempdir().unwrap();
     let p = dir.path().join(name);
     std::fs::write(&p, bytes).unwrap();
-    let e = Scene::load(&p)
-        .err()
-        .expect("a corrupt file loaded")
-        .to_string();
+    let Err(e) = Scene::load(&p) else {
+        panic!("a corrupt file loaded");
+    };
+    let e = e.to_string();
     assert!(e.contains(name), "error does not name the file: {e}");
     e
 }

@@ -227,7 +227,7 @@ pub fn decode(
 /// The strides and counts the extension (and the C decoder) allow for a mode and filter.
 fn check_shape(count: usize, stride: usize, mode: Mode, filter: Filter) -> Result<(), String> {
     let stride_ok = match mode {
-        Mode::Attributes => stride > 0 && stride <= 256 && stride % 4 == 0,
+        Mode::Attributes => stride > 0 && stride <= 256 && stride.is_multiple_of(4),
         Mode::Triangles | Mode::Indices => stride == 2 || stride == 4,
     };
     if !stride_ok {
@@ -235,7 +235,7 @@ fn check_shape(count: usize, stride: usize, mode: Mode, filter: Filter) -> Resul
             "byteStride {stride} is not allowed in {mode:?} mode"
         ));
     }
-    if mode == Mode::Triangles && count % 3 != 0 {
+    if mode == Mode::Triangles && !count.is_multiple_of(3) {
         return Err(format!("TRIANGLES count {count} is not a multiple of 3"));
     }
     let filter_ok = match filter {

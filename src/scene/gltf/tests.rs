@@ -718,7 +718,9 @@ fn vertex_colours_rgb_and_rgba_float_and_normalized() {
     let dir = tempfile::tempdir().unwrap();
     let pos: Vec<u8> = TRI.iter().flatten().flat_map(|f| f.to_le_bytes()).collect();
     let f32s = |v: &[f32]| v.iter().flat_map(|f| f.to_le_bytes()).collect::<Vec<u8>>();
-    let cases: [((u32, &str, bool, Vec<u8>), [f32; 4]); 3] = [
+    // (component type, accessor type, normalized, bytes) and the colour expected.
+    type Case<'a> = ((u32, &'a str, bool, Vec<u8>), [f32; 4]);
+    let cases: [Case; 3] = [
         (
             (5126, "VEC3", false, f32s(&[0.25, 0.5, 1.0].repeat(3))),
             [0.25, 0.5, 1.0, 1.0],
