@@ -170,12 +170,20 @@ pub fn write(image: &Image, path: &Path, exposure: f32) -> Result<(), FilmError>
 /// `write`, a PNG shown as `display` says (an EXR is linear and ignores it).
 pub fn write_with(image: &Image, path: &Path, display: &Display) -> Result<(), FilmError> {
     let format = Format::from_path(path)?;
+    write_through_temp(path, |tmp| match format {
+        Format::Png => write_png(image, tmp, display),
+        Format::Exr => write_exr(image, tmp),
+    })
+}
+
+/// Encodes into a temporary file beside `path` and renames it into place, so a failed or killed
+/// write never leaves a partial file under the final name.
+pub(crate) fn write_through_temp(
+    path: &Path,
+    encode: impl FnOnce(&Path) -> Result<(), EncodeError>,
+) -> Result<(), FilmError> {
     let tmp = temp_path(path);
-    let result = match format {
-        Format::Png => write_png(image, &tmp, display),
-        Format::Exr => write_exr(image, &tmp),
-    };
-    if let Err(source) = result {
+    if let Err(source) = encode(&tmp) {
         let _ = fs::remove_file(&tmp);
         return Err(FilmError::Write {
             path: path.to_path_buf(),

@@ -2,13 +2,12 @@
 //! sample-shard EXR that keeps a still's exact per-pixel sums and weights so `glint merge` can add them.
 
 use std::collections::BTreeMap;
-use std::fs;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
 use glam::DVec4;
 
-use super::{temp_path, EncodeError, FilmError, Image};
+use super::{write_through_temp, EncodeError, FilmError, Image};
 
 /// One machine's share: the items (frames, or sample indices) with `item % count == index`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -150,19 +149,7 @@ fn component(p: &PixelSum, k: usize) -> f64 {
 /// Writes a sample shard: RGBA (this shard's own mean, to look at) and the exact sums, with the
 /// shard and settings hash in the header; through a temporary file and a rename.
 pub fn write_sample_shard(shard: &SampleShard, path: &Path) -> Result<(), FilmError> {
-    let tmp = temp_path(path);
-    let result = encode(shard, &tmp);
-    if let Err(source) = result {
-        let _ = fs::remove_file(&tmp);
-        return Err(FilmError::Write {
-            path: path.to_path_buf(),
-            source,
-        });
-    }
-    fs::rename(&tmp, path).map_err(|source| FilmError::Rename {
-        path: path.to_path_buf(),
-        source,
-    })
+    write_through_temp(path, |tmp| encode(shard, tmp))
 }
 
 fn encode(shard: &SampleShard, path: &Path) -> Result<(), EncodeError> {

@@ -8,7 +8,7 @@ use glam::{Vec2, Vec3};
 
 use super::fresnel::{fresnel_exact, schlick};
 use super::microfacet::{g1, g2, ggx_d, sample_vndf};
-use super::{luminance, Bsdf, BsdfSample};
+use super::{choice_probabilities, luminance, Bsdf, BsdfSample};
 use crate::sample::warp::cosine_hemisphere;
 
 /// Probabilities of the three lobes (reflection, diffuse, transmission).
@@ -96,26 +96,18 @@ impl Bsdf {
     /// uniform choice so that no active lobe is starved.
     pub(super) fn lobes(&self, cos_o: f32) -> Lobes {
         let w = self.lobe_weights(cos_o);
-        let total: f32 = w.iter().sum();
-        let active = w.iter().filter(|&&x| x > 0.0).count() as f32;
-        if total <= 0.0 {
+        if w.iter().sum::<f32>() <= 0.0 {
             return Lobes {
                 reflect: 1.0,
                 diffuse: 0.0,
                 transmit: 0.0,
             };
         }
-        let p = |x: f32| {
-            if x > 0.0 {
-                0.9 * x / total + 0.1 / active
-            } else {
-                0.0
-            }
-        };
+        let [reflect, diffuse, transmit] = choice_probabilities(w);
         Lobes {
-            reflect: p(w[0]),
-            diffuse: p(w[1]),
-            transmit: p(w[2]),
+            reflect,
+            diffuse,
+            transmit,
         }
     }
 

@@ -6,7 +6,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{Bsdf, BsdfSample};
+use super::{choice_probabilities, Bsdf, BsdfSample};
 
 /// Probabilities of sampling each layer.
 #[derive(Clone, Copy, Debug)]
@@ -47,20 +47,8 @@ impl Bsdf {
             },
             (1.0 - fc) * (1.0 - es) * self.base_estimate(o.z).max(0.05),
         ];
-        let total: f32 = w.iter().sum();
-        let active = w.iter().filter(|&&x| x > 0.0).count() as f32;
-        let p = |x: f32| {
-            if x > 0.0 {
-                0.9 * x / total + 0.1 / active
-            } else {
-                0.0
-            }
-        };
-        LayerChoice {
-            coat: p(w[0]),
-            sheen: p(w[1]),
-            base: p(w[2]),
-        }
+        let [coat, sheen, base] = choice_probabilities(w);
+        LayerChoice { coat, sheen, base }
     }
 
     /// Value of every non-delta lobe and the pdf of choosing and sampling `wi`, for world directions.

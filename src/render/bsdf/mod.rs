@@ -20,6 +20,21 @@ pub use sheen::Sheen;
 
 use crate::geometry::Frame;
 
+/// Probabilities of choosing among lobes or layers with rough weights `w` (positive total): in
+/// proportion to the weights, mixed with a tenth of a uniform choice among the non-zero ones so that
+/// no active lobe is starved.
+fn choice_probabilities(w: [f32; 3]) -> [f32; 3] {
+    let total: f32 = w.iter().sum();
+    let active = w.iter().filter(|&&x| x > 0.0).count() as f32;
+    w.map(|x| {
+        if x > 0.0 {
+            0.9 * x / total + 0.1 / active
+        } else {
+            0.0
+        }
+    })
+}
+
 /// GGX alpha below which the specular lobes are perfectly smooth (delta lobes): glTF roughness under
 /// about 0.03 renders as a true mirror or clear glass.
 const MIN_ALPHA: f32 = 1e-3;
