@@ -10,7 +10,7 @@ use std::mem::MaybeUninit;
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::flat::TriId;
+use super::flat::{take_lanes, TriId};
 use super::layered::{Layered, Triangles};
 use crate::geometry::f4::F4;
 use crate::geometry::triangle::{self, RayShear, Tri4};
@@ -208,30 +208,9 @@ impl Bvh {
                 let first = child as usize;
                 for packet in first..first + (count as usize).div_ceil(4) {
                     let h = triangle::intersect4(ray.o, &sh, &self.tris[packet], ray.t_min, t_max);
-                    let mut mask = h.mask;
-                    while mask != 0 {
-                        let lane = mask.trailing_zeros() as usize;
-                        mask &= mask - 1;
-                        // t_max shrinks as lanes are accepted: later, farther lanes drop out.
-                        if h.t[lane] >= t_max {
-                            continue;
-                        }
-                        let id = self.ids[4 * packet + lane];
-                        if !id.accepts(scene, h.u[lane], h.v[lane], ray) {
-                            continue;
-                        }
-                        let hit = Hit {
-                            t: h.t[lane],
-                            u: h.u[lane],
-                            v: h.v[lane],
-                            inst: id.inst(),
-                            prim: id.prim,
-                        };
-                        if any {
-                            return Some(hit);
-                        }
-                        t_max = hit.t;
-                        best = Some(hit);
+                    let ids = |lane| self.ids[4 * packet + lane];
+                    if take_lanes(any, &h, h.mask, ids, scene, ray, &mut t_max, &mut best) {
+                        return best;
                     }
                 }
             } else {

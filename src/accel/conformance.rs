@@ -12,7 +12,7 @@ use glam::{Mat4, Vec3, Vec4};
 use super::bvh::{Bvh, BvhAccel};
 use super::compare;
 use super::grid::GridAccel;
-use super::testing::{brute, rng, scene, Brute};
+use super::testing::{alpha_quads, brute, down, quad, rng, scene, scene_with, Brute};
 use super::{Accel, Backend};
 use crate::csg::{CsgObject, Node, Shape};
 use crate::geometry::{Motion, Ray, CSG_BIT};
@@ -271,37 +271,6 @@ fn empty_scenes_and_segment_limits() {
     }
 }
 
-/// The unit quad [0,1]^2 at z = 0: triangle 0 = (0,1,2), triangle 1 = (0,2,3).
-pub(super) fn quad() -> Mesh {
-    Mesh {
-        name: "quad".into(),
-        positions: vec![
-            Vec3::new(0.0, 0.0, 0.0),
-            Vec3::new(1.0, 0.0, 0.0),
-            Vec3::new(1.0, 1.0, 0.0),
-            Vec3::new(0.0, 1.0, 0.0),
-        ],
-        normals: vec![Vec3::Z; 4],
-        indices: vec![[0, 1, 2], [0, 2, 3]],
-        ..Default::default()
-    }
-}
-
-fn scene_with(meshes: Vec<Mesh>, instances: Vec<Instance>, materials: Vec<Material>) -> Arc<Scene> {
-    let s = Scene {
-        meshes,
-        instances,
-        materials,
-        ..Default::default()
-    };
-    s.validate().expect("valid test scene");
-    Arc::new(s)
-}
-
-fn down(o: Vec3) -> Ray {
-    Ray::new(o, Vec3::NEG_Z)
-}
-
 /// Barycentrics weight vertices 1 and 2; `t` is in units of the direction's length.
 #[test]
 fn unit_quad_hits_barycentrics_and_segments() {
@@ -454,19 +423,7 @@ fn alpha_masks_cut_out() {
             ..Default::default()
         };
         assert!(mat.needs_alpha_test());
-        // The masked quad in front, placed once (inst 0) and twice (insts 1, 2).
-        let mut masked = quad();
-        masked.material = 1;
-        let s = scene_with(
-            vec![quad(), masked.clone(), masked],
-            vec![
-                Instance::new(1, Mat4::IDENTITY),
-                Instance::new(2, Mat4::from_translation(Vec3::new(10.0, 0.0, 0.0))),
-                Instance::new(2, Mat4::from_translation(Vec3::new(20.0, 0.0, 0.0))),
-                Instance::new(0, Mat4::from_translation(Vec3::new(0.0, 0.0, -1.0))),
-            ],
-            vec![Material::default(), mat],
-        );
+        let s = alpha_quads(mat);
         for case in cases() {
             let name = &case.name;
             let a = (case.build)(s.clone());

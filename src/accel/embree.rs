@@ -740,28 +740,13 @@ impl Accel for EmbreeAccel {
 mod tests {
     // Queries are tested with every backend's in `accel::conformance`; here, Embree's own paths.
     use super::*;
-    use crate::accel::conformance::quad;
+    use crate::accel::testing::{alpha_quads, down, quad, scene_with as scene_of};
     use crate::scene::{AlphaMode, Instance, Material};
     use glam::{Mat4, Vec3, Vec4};
     use rayon::prelude::*;
 
-    fn scene_of(meshes: Vec<Mesh>, instances: Vec<Instance>, materials: Vec<Material>) -> Scene {
-        let s = Scene {
-            meshes,
-            instances,
-            materials,
-            ..Default::default()
-        };
-        s.validate().expect("valid test scene");
-        s
-    }
-
-    fn build(s: Scene) -> EmbreeAccel {
-        EmbreeAccel::build(Arc::new(s)).expect("embree builds")
-    }
-
-    fn down(o: Vec3) -> Ray {
-        Ray::new(o, Vec3::NEG_Z)
+    fn build(s: Arc<Scene>) -> EmbreeAccel {
+        EmbreeAccel::build(s).expect("embree builds")
     }
 
     #[test]
@@ -803,18 +788,7 @@ mod tests {
             ..Default::default()
         };
         for mat in [mask(0.2), mask(0.8), blend] {
-            let mut filtered = quad();
-            filtered.material = 1;
-            let accel = build(scene_of(
-                vec![quad(), filtered.clone(), filtered],
-                vec![
-                    Instance::new(1, Mat4::IDENTITY),
-                    Instance::new(2, Mat4::from_translation(Vec3::new(10.0, 0.0, 0.0))),
-                    Instance::new(2, Mat4::from_translation(Vec3::new(20.0, 0.0, 0.0))),
-                    Instance::new(0, Mat4::from_translation(Vec3::new(0.0, 0.0, -1.0))),
-                ],
-                vec![Material::default(), mat],
-            ));
+            let accel = build(alpha_quads(mat));
             let rays: Vec<Ray> = (0..300)
                 .map(|i| {
                     let x = (i % 3) as f32 * 10.0 + (i as f32 + 0.5) / 300.0;

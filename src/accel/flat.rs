@@ -4,7 +4,8 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use crate::geometry::Ray;
+use crate::geometry::triangle::Hits4;
+use crate::geometry::{Hit, Ray};
 use crate::scene::Scene;
 
 /// Marks an instance id whose material needs an alpha test.
@@ -44,6 +45,48 @@ impl TriId {
     pub fn accepts(self, scene: &Scene, u: f32, v: f32, ray: &Ray) -> bool {
         !self.alpha_tested() || scene.alpha_passes(self.inst(), self.prim, u, v, ray)
     }
+}
+
+/// Takes the accepted lanes of one packet test in lane order into the nearest hit so far, shrinking
+/// `t_max` as it goes so that later, farther lanes drop out. Returns true when `any` and a lane was
+/// accepted (an occlusion query is then answered).
+// Plain arguments rather than a state struct: this is the innermost loop of both walks and the
+// borrowed `t_max` stays in a register once inlined.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub fn take_lanes(
+    any: bool,
+    h: &Hits4,
+    mut mask: u32,
+    id_of: impl Fn(usize) -> TriId,
+    scene: &Scene,
+    ray: &Ray,
+    t_max: &mut f32,
+    best: &mut Option<Hit>,
+) -> bool {
+    while mask != 0 {
+        let lane = mask.trailing_zeros() as usize;
+        mask &= mask - 1;
+        if h.t[lane] >= *t_max {
+            continue;
+        }
+        let id = id_of(lane);
+        if !id.accepts(scene, h.u[lane], h.v[lane], ray) {
+            continue;
+        }
+        *t_max = h.t[lane];
+        *best = Some(Hit {
+            t: h.t[lane],
+            u: h.u[lane],
+            v: h.v[lane],
+            inst: id.inst(),
+            prim: id.prim,
+        });
+        if any {
+            return true;
+        }
+    }
+    false
 }
 
 /// World-space vertices of every triangle of every static instance, and their identities, in instance

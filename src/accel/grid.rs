@@ -18,7 +18,7 @@ use std::sync::Arc;
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::flat::TriId;
+use super::flat::{take_lanes, TriId};
 use super::layered::{Layered, Triangles};
 use crate::geometry::triangle::{self, RayShear, Tri4};
 use crate::geometry::{Aabb, Hit, Ray};
@@ -362,30 +362,18 @@ impl Grid {
                     continue;
                 }
                 let h = triangle::intersect4(ray.o, &sh, &self.packets[p], ray.t_min, t_max);
-                let mut mask = h.mask & live;
-                while mask != 0 {
-                    let lane = mask.trailing_zeros() as usize;
-                    mask &= mask - 1;
-                    // t_max shrinks as lanes are accepted: later, farther lanes drop out.
-                    if !(h.t[lane] < t_max) {
-                        continue;
-                    }
-                    let tid = self.ids[lanes[lane] as usize];
-                    if !tid.accepts(scene, h.u[lane], h.v[lane], ray) {
-                        continue;
-                    }
-                    let hit = Hit {
-                        t: h.t[lane],
-                        u: h.u[lane],
-                        v: h.v[lane],
-                        inst: tid.inst(),
-                        prim: tid.prim,
-                    };
-                    if any {
-                        return Some(hit);
-                    }
-                    t_max = hit.t;
-                    best = Some(hit);
+                let ids = |lane| self.ids[lanes[lane] as usize];
+                if take_lanes(
+                    any,
+                    &h,
+                    h.mask & live,
+                    ids,
+                    scene,
+                    ray,
+                    &mut t_max,
+                    &mut best,
+                ) {
+                    return best;
                 }
             }
             // Leave through the nearest boundary; stop once no farther cell can hold a nearer hit.

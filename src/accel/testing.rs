@@ -5,8 +5,10 @@ use crate::geometry::triangle::{self, RayShear};
 use crate::geometry::{Hit, Ray};
 use std::sync::Arc;
 
+use glam::{Mat4, Vec3};
+
 use super::Accel;
-use crate::scene::{generate, Instance, Mesh, Scene};
+use crate::scene::{generate, Instance, Material, Mesh, Scene};
 
 /// A shared scene of the meshes and instances, with the default material.
 pub fn scene(meshes: Vec<Mesh>, instances: Vec<Instance>) -> Arc<Scene> {
@@ -62,4 +64,58 @@ pub fn rng(seed: u64) -> impl FnMut() -> f32 {
         s ^= s << 17;
         (s >> 40) as f32 / (1u64 << 24) as f32
     }
+}
+
+/// The unit quad [0,1]^2 at z = 0: triangle 0 = (0,1,2), triangle 1 = (0,2,3).
+pub fn quad() -> Mesh {
+    Mesh {
+        name: "quad".into(),
+        positions: vec![
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+        ],
+        normals: vec![Vec3::Z; 4],
+        indices: vec![[0, 1, 2], [0, 2, 3]],
+        ..Default::default()
+    }
+}
+
+/// A validated shared scene of the meshes, instances and materials.
+pub fn scene_with(
+    meshes: Vec<Mesh>,
+    instances: Vec<Instance>,
+    materials: Vec<Material>,
+) -> Arc<Scene> {
+    let s = Scene {
+        meshes,
+        instances,
+        materials,
+        ..Default::default()
+    };
+    s.validate().expect("valid test scene");
+    Arc::new(s)
+}
+
+/// A ray straight down (-z) from `o`.
+pub fn down(o: Vec3) -> Ray {
+    Ray::new(o, Vec3::NEG_Z)
+}
+
+/// A quad of material `mat` (material 1) placed once directly (inst 0, over an opaque quad at
+/// z = -1, inst 3) and twice more at x = 10 and x = 20 as a second mesh (insts 1, 2).
+pub fn alpha_quads(mat: Material) -> Arc<Scene> {
+    let mut masked = quad();
+    masked.material = 1;
+    scene_with(
+        vec![quad(), masked.clone(), masked],
+        vec![
+            Instance::new(1, Mat4::IDENTITY),
+            Instance::new(2, Mat4::from_translation(Vec3::new(10.0, 0.0, 0.0))),
+            Instance::new(2, Mat4::from_translation(Vec3::new(20.0, 0.0, 0.0))),
+            Instance::new(0, Mat4::from_translation(Vec3::new(0.0, 0.0, -1.0))),
+        ],
+        vec![Material::default(), mat],
+    )
 }

@@ -98,7 +98,38 @@ fn check_extension(path: &Path, ext: &str, flag: &str) -> Result<()> {
     Ok(())
 }
 
+/// The checked flags of one turntable run.
+struct Plan {
+    basics: Basics,
+    yfov: f32,
+    shutter_angle: f32,
+    names: FrameNames,
+    selected: Vec<u32>,
+}
+
 pub fn run(args: TurntableArgs) -> Result<()> {
+    let plan = plan(&args)?;
+    args.common.set_threads()?;
+    let exists = |f: &u32| plan.names.path(*f).exists();
+    if !args.overwrite && plan.selected.iter().all(exists) {
+        // A finished (or finished-by-other-shards) sequence: no need to load or build anything.
+        if !args.common.quiet {
+            eprintln!(
+                "{}: all {} selected frames exist; nothing to render",
+                args.input.display(),
+                plan.selected.len()
+            );
+        }
+    } else {
+        render_frames(&args, &plan)?;
+    }
+    if args.preview.is_some() || args.contact_sheet.is_some() {
+        write_previews(&args, &plan.names)?;
+    }
+    Ok(())
+}
+
+fn plan(args: &TurntableArgs) -> Result<Plan> {
     // A sequence takes its settings from the command line only (not from a scene file's [render]).
     let basics = job::resolve(
         Basics::default(),
@@ -139,77 +170,55 @@ pub fn run(args: TurntableArgs) -> Result<()> {
     });
     let names = FrameNames::from_output(&args.output, format, args.frames)?;
     let selected = turntable::select_frames(args.frames, args.shard, args.frame_range.clone())?;
-    args.common.set_threads()?;
+    Ok(Plan {
+        basics,
+        yfov,
+        shutter_angle,
+        names,
+        selected,
+    })
+}
 
-    let exists = |f: &u32| names.path(*f).exists();
-    let nothing_to_do = !args.overwrite && selected.iter().all(exists);
-    if nothing_to_do {
-        // A finished (or finished-by-other-shards) sequence: no need to load or build anything.
-        if !args.common.quiet {
-            eprintln!(
-                "{}: all {} selected frames exist; nothing to render",
-                args.input.display(),
-                selected.len()
-            );
-        }
-    } else {
-        render_frames(
-            &args,
-            &basics,
-            names.clone(),
-            &selected,
-            yfov,
-            shutter_angle,
+/// The GIF and the contact sheet, once every frame of the sequence is on disk.
+fn write_previews(args: &TurntableArgs, names: &FrameNames) -> Result<()> {
+    let missing = turntable::missing_frames(names, args.frames);
+    if let Some(first) = missing.first() {
+        eprintln!(
+            "warning: previews skipped: {} of {} frames are not on disk yet (first: {}); run again once every shard has finished",
+            missing.len(),
+            args.frames,
+            names.path(*first).display()
+        );
+        return Ok(());
+    }
+    let t = Instant::now();
+    if let Some(p) = &args.preview {
+        turntable::write_gif(
+            names,
+            args.frames,
+            &args.common.display(),
+            p,
+            args.preview_fps,
+            args.preview_width,
         )?;
     }
-
-    if args.preview.is_some() || args.contact_sheet.is_some() {
-        let missing = turntable::missing_frames(&names, args.frames);
-        if let Some(first) = missing.first() {
-            eprintln!(
-                "warning: previews skipped: {} of {} frames are not on disk yet (first: {}); run again once every shard has finished",
-                missing.len(),
-                args.frames,
-                names.path(*first).display()
-            );
-            return Ok(());
-        }
-        let t = Instant::now();
-        if let Some(p) = &args.preview {
-            turntable::write_gif(
-                &names,
-                args.frames,
-                &args.common.display(),
-                p,
-                args.preview_fps,
-                args.preview_width,
-            )?;
-        }
-        if let Some(p) = &args.contact_sheet {
-            turntable::write_contact_sheet(&names, args.frames, &args.common.display(), p, 256)?;
-        }
-        if !args.common.quiet {
-            eprintln!("previews written in {:.2} s", t.elapsed().as_secs_f64());
-        }
+    if let Some(p) = &args.contact_sheet {
+        turntable::write_contact_sheet(names, args.frames, &args.common.display(), p, 256)?;
+    }
+    if !args.common.quiet {
+        eprintln!("previews written in {:.2} s", t.elapsed().as_secs_f64());
     }
     Ok(())
 }
 
-fn render_frames(
-    args: &TurntableArgs,
-    basics: &Basics,
-    names: FrameNames,
-    selected: &[u32],
-    yfov: f32,
-    shutter_angle: f32,
-) -> Result<()> {
+fn render_frames(args: &TurntableArgs, plan: &Plan) -> Result<()> {
     let t0 = Instant::now();
     let scene = load(&args.input)?;
     let load_s = t0.elapsed().as_secs_f64();
-
+    let basics = &plan.basics;
     let mut orbit = Orbit::framing(
         &scene.bounds(),
-        yfov,
+        plan.yfov,
         basics.aspect(),
         args.elevation.to_radians(),
     );
@@ -230,7 +239,7 @@ fn render_frames(
     let job = Setup::new(scene, &opts)?.build()?;
     let tt = Turntable {
         frames: args.frames,
-        names,
+        names: plan.names.clone(),
         orbit,
         motion: if args.spin {
             Motion::Spin
@@ -241,7 +250,7 @@ fn render_frames(
             Lights::World => LightMode::World,
             Lights::Camera => LightMode::Camera,
         },
-        shutter_angle,
+        shutter_angle: plan.shutter_angle,
         settings: job.settings.clone(),
         exposure: args.common.exposure,
         view: args.common.view,
@@ -251,34 +260,51 @@ fn render_frames(
         args.common.quiet,
         "{spinner} turntable [{bar:40}] {pos}/{len} frames ({msg}), {elapsed} elapsed, eta {eta}",
     );
-    let report = tt.render_sequence(&job.scene, job.accel.as_ref(), selected, &progress)?;
+    let report = tt.render_sequence(&job.scene, job.accel.as_ref(), &plan.selected, &progress)?;
     if !args.common.quiet {
-        let total: f64 = report.frame_seconds.iter().sum();
-        eprintln!(
-            "{}: {} frames rendered, {} skipped (of {} selected, {} in the sequence), {}x{} at {} spp with {}",
-            args.input.display(),
-            report.rendered.len(),
-            report.skipped.len(),
-            selected.len(),
-            args.frames,
-            basics.width,
-            basics.height,
-            basics.spp,
-            job.accel.name(),
-        );
-        eprintln!(
-            "cost: load {load_s:.3} s, build {:.3} s (once), per frame {:.3} s mean ({:.2} s for {} frames, {:.2} Mrays/s){}",
+        print_report(
+            args,
+            plan,
+            &report,
+            load_s,
             job.build_seconds,
-            report.mean_frame_seconds(),
-            total,
-            report.rendered.len(),
-            report.rays as f64 / total.max(1e-9) / 1e6,
-            if report.scene_copy_seconds > 0.0 {
-                format!(", scene copy for moving lights {:.3} s", report.scene_copy_seconds)
-            } else {
-                String::new()
-            }
+            job.accel.name(),
         );
     }
     Ok(())
+}
+
+fn print_report(
+    args: &TurntableArgs,
+    plan: &Plan,
+    report: &turntable::SequenceReport,
+    load_s: f64,
+    build_s: f64,
+    accel: &str,
+) {
+    let basics = &plan.basics;
+    let total: f64 = report.frame_seconds.iter().sum();
+    eprintln!(
+        "{}: {} frames rendered, {} skipped (of {} selected, {} in the sequence), {}x{} at {} spp with {accel}",
+        args.input.display(),
+        report.rendered.len(),
+        report.skipped.len(),
+        plan.selected.len(),
+        args.frames,
+        basics.width,
+        basics.height,
+        basics.spp,
+    );
+    eprintln!(
+        "cost: load {load_s:.3} s, build {build_s:.3} s (once), per frame {:.3} s mean ({:.2} s for {} frames, {:.2} Mrays/s){}",
+        report.mean_frame_seconds(),
+        total,
+        report.rendered.len(),
+        report.rays as f64 / total.max(1e-9) / 1e6,
+        if report.scene_copy_seconds > 0.0 {
+            format!(", scene copy for moving lights {:.3} s", report.scene_copy_seconds)
+        } else {
+            String::new()
+        }
+    );
 }

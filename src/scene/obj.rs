@@ -45,6 +45,59 @@ pub fn default_obj_material() -> Material {
 }
 
 fn load_inner(path: &Path) -> Result<Scene, LoadError> {
+    let (models, materials, search, warnings) = read_obj(path)?;
+    let mut scene = Scene::default();
+    scene.warnings.extend(warnings);
+    let mut textures: HashMap<(PathBuf, bool), Option<u32>> = HashMap::new();
+    for m in &materials {
+        let mat = convert_material(m, &search, &mut scene, &mut textures);
+        scene.materials.push(mat);
+    }
+    let mut default_material: Option<u32> = None;
+    let mut dropped = 0;
+    for model in &models {
+        let material = match model.mesh.material_id {
+            Some(id) if id < scene.materials.len() => id as u32,
+            _ => *default_material.get_or_insert_with(|| {
+                scene.materials.push(default_obj_material());
+                (scene.materials.len() - 1) as u32
+            }),
+        };
+        let mut mesh = convert_mesh(model, material).map_err(|e| LoadError::new(path, e))?;
+        dropped += mesh.clean();
+        if mesh.indices.is_empty() {
+            continue;
+        }
+        scene.meshes.push(mesh);
+        scene.instances.push(Instance::new(
+            (scene.meshes.len() - 1) as u32,
+            Mat4::IDENTITY,
+        ));
+    }
+    if dropped > 0 {
+        scene
+            .warnings
+            .push(format!("dropped {dropped} degenerate triangles"));
+    }
+    scene.stats.nodes = 0;
+    scene.stats.meshes = models.len();
+    scene.stats.primitives = scene.meshes.len();
+    scene.stats.materials = scene.materials.len();
+    scene.stats.textures = scene.textures.len();
+    scene.stats.triangles = scene.triangle_count();
+    Ok(scene)
+}
+
+/// What tobj reads from an OBJ: its models, its materials, the folders to search for textures
+/// (each MTL's own folder, then the OBJ's) and one warning per MTL that could not be read.
+type ObjContents = (
+    Vec<tobj::Model>,
+    Vec<tobj::Material>,
+    Vec<PathBuf>,
+    Vec<String>,
+);
+
+fn read_obj(path: &Path) -> Result<ObjContents, LoadError> {
     let file = std::fs::File::open(path)
         .map_err(|e| LoadError::new(path, format!("cannot read file: {e}")))?;
     let dir = path
@@ -79,99 +132,62 @@ fn load_inner(path: &Path) -> Result<Scene, LoadError> {
         r
     })
     .map_err(|e| LoadError::new(path, format!("malformed OBJ: {e}")))?;
+    let mut search = mtl_dirs.into_inner();
+    search.push(dir);
+    Ok((
+        models,
+        materials.unwrap_or_default(),
+        search,
+        mtl_errors.into_inner(),
+    ))
+}
 
-    let mut scene = Scene::default();
-    scene.warnings.extend(mtl_errors.into_inner());
-    let mut search: Vec<PathBuf> = mtl_dirs.into_inner();
-    search.push(dir.clone());
-
-    let materials = materials.unwrap_or_default();
-    let mut textures: HashMap<(PathBuf, bool), Option<u32>> = HashMap::new();
-    for m in &materials {
-        let mat = convert_material(m, &search, &mut scene, &mut textures);
-        scene.materials.push(mat);
-    }
-    let mut default_material: Option<u32> = None;
-
-    let mut dropped = 0;
-    for model in &models {
-        let tm = &model.mesh;
-        let positions: Vec<Vec3> = tm
-            .positions
-            .chunks_exact(3)
+/// One tobj model as a `Mesh`; attributes whose count does not match the positions are dropped,
+/// and an index past the last vertex is an error.
+fn convert_mesh(model: &tobj::Model, material: u32) -> Result<Mesh, String> {
+    let tm = &model.mesh;
+    let vec3s = |v: &[f32]| -> Vec<Vec3> {
+        v.chunks_exact(3)
             .map(|p| Vec3::new(p[0], p[1], p[2]))
-            .collect();
-        let n = positions.len();
-        let normals: Vec<Vec3> = if tm.normals.len() == 3 * n {
-            tm.normals
-                .chunks_exact(3)
-                .map(|p| Vec3::new(p[0], p[1], p[2]))
-                .collect()
-        } else {
-            Vec::new()
-        };
-        // OBJ puts v = 0 at the bottom of the image; glint's textures have v = 0 at the top row.
-        let uvs: Vec<Vec2> = if tm.texcoords.len() == 2 * n {
-            tm.texcoords
-                .chunks_exact(2)
-                .map(|t| Vec2::new(t[0], 1.0 - t[1]))
-                .collect()
-        } else {
-            Vec::new()
-        };
-        let indices: Vec<[u32; 3]> = tm
-            .indices
-            .chunks_exact(3)
-            .map(|c| [c[0], c[1], c[2]])
-            .collect();
-        if let Some(&bad) = tm.indices.iter().find(|&&i| i as usize >= n) {
-            return Err(LoadError::new(
-                path,
-                format!(
-                    "object '{}': vertex index {bad} out of range ({n} vertices)",
-                    model.name
-                ),
-            ));
-        }
-        let material = match tm.material_id {
-            Some(id) if id < scene.materials.len() => id as u32,
-            _ => *default_material.get_or_insert_with(|| {
-                scene.materials.push(default_obj_material());
-                (scene.materials.len() - 1) as u32
-            }),
-        };
-        let mut mesh = Mesh {
-            name: model.name.clone(),
-            positions,
-            normals,
-            uvs,
-            tangents: Vec::new(),
-            indices,
-            material,
-            ..Default::default()
-        };
-        dropped += mesh.clean();
-        if mesh.indices.is_empty() {
-            continue;
-        }
-        scene.meshes.push(mesh);
-        scene.instances.push(Instance::new(
-            (scene.meshes.len() - 1) as u32,
-            Mat4::IDENTITY,
+            .collect()
+    };
+    let positions = vec3s(&tm.positions);
+    let n = positions.len();
+    if let Some(&bad) = tm.indices.iter().find(|&&i| i as usize >= n) {
+        return Err(format!(
+            "object '{}': vertex index {bad} out of range ({n} vertices)",
+            model.name
         ));
     }
-    if dropped > 0 {
-        scene
-            .warnings
-            .push(format!("dropped {dropped} degenerate triangles"));
-    }
-    scene.stats.nodes = 0;
-    scene.stats.meshes = models.len();
-    scene.stats.primitives = scene.meshes.len();
-    scene.stats.materials = scene.materials.len();
-    scene.stats.textures = scene.textures.len();
-    scene.stats.triangles = scene.triangle_count();
-    Ok(scene)
+    let normals = if tm.normals.len() == 3 * n {
+        vec3s(&tm.normals)
+    } else {
+        Vec::new()
+    };
+    // OBJ puts v = 0 at the bottom of the image; glint's textures have v = 0 at the top row.
+    let uvs: Vec<Vec2> = if tm.texcoords.len() == 2 * n {
+        tm.texcoords
+            .chunks_exact(2)
+            .map(|t| Vec2::new(t[0], 1.0 - t[1]))
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let indices = tm
+        .indices
+        .chunks_exact(3)
+        .map(|c| [c[0], c[1], c[2]])
+        .collect();
+    Ok(Mesh {
+        name: model.name.clone(),
+        positions,
+        normals,
+        uvs,
+        tangents: Vec::new(),
+        indices,
+        material,
+        ..Default::default()
+    })
 }
 
 fn parse3(s: &str) -> Option<Vec3> {
