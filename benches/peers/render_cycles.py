@@ -1,0 +1,187 @@
+#!/usr/bin/env python3
+"""Blender Cycles as a peer renderer: one glTF model, imported by Blender's own glTF importer, rendered
+unbiased to a linear EXR under a camera and world given on the command line (glTF coordinates, +Y up).
+
+Run with a Python that has `bpy` (pip install bpy==5.0.1, in a venv outside the repository). Shared by
+the accuracy bench (accuracy.py) and meant for the speed bench too. (Not named cycles.py: Blender
+imports its Cycles add-on as the module `cycles`, and this script's folder is first on sys.path.)
+
+    render_cycles.py MODEL OUT.exr --width W --height H --spp N --eye X,Y,Z --look-at X,Y,Z --fov DEG
+              --bounces B [--threads 2] [--seed 1] [--world 1.0] [--distribution importer|GGX]
+              [--tint importer|squared] [--absorption importer|spec] [--lights SPEC|COMPAT]
+              [--report T.json]
+
+Why each setting:
+- Unbiased: no sample clamping, no glossy filter, caustics on, light threshold 0, no adaptive
+  sampling, no denoiser, no path guiding; box pixel filter of width 1 (glint's `--filter box`).
+- Depth: Cycles counts bounces after the first hit, glint's --max-depth counts bounces after the
+  camera ray including the first hit's light sample, so glint D matches Cycles B = D - 1.
+  Transparent bounces 64: alpha pass-through is not a bounce in glint either.
+- glTF (x, y, z) is Blender (x, -z, y): the importer turns the model so, and the camera is placed so.
+- `--distribution GGX`: the importer's Principled BSDF uses multiple-scattering GGX; glTF's BRDF is
+  single-scatter GGX. `--tint squared`: Cycles tints transmission once per object (sqrt(base) per
+  interface), glint by the base colour at every interface; squaring the base colour of fully
+  transmissive materials makes Cycles do what glint does. `--absorption spec`: the importer's volume
+  absorption is (1 - c) / d; the KHR_materials_volume spec's is -ln(c) / d.
+- `--lights COMPAT` reads 1 cd as 1 W/sr (glint's reading); SPEC divides by 683 lm/W.
+"""
+import argparse
+import json
+import math
+import os
+import sys
+import time
+
+
+def parse_args():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("model")
+    ap.add_argument("out")
+    for name in ("--width", "--height", "--spp", "--bounces"):
+        ap.add_argument(name, type=int, required=True)
+    ap.add_argument("--eye", required=True)
+    ap.add_argument("--look-at", required=True)
+    ap.add_argument("--fov", type=float, required=True, help="vertical, degrees")
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--world", type=float, default=1.0, help="constant world radiance")
+    ap.add_argument("--distribution", default="importer", choices=["importer", "GGX", "MULTI_GGX"])
+    ap.add_argument("--tint", default="importer", choices=["importer", "squared"])
+    ap.add_argument("--absorption", default="importer", choices=["importer", "spec"])
+    ap.add_argument("--lights", default="SPEC", choices=["SPEC", "COMPAT"])
+    ap.add_argument("--report", default="")
+    return ap.parse_args()
+
+
+def point(s):
+    x, y, z = (float(v) for v in s.split(","))
+    return (x, -z, y)
+
+
+def principled(materials):
+    for m in materials:
+        if m.node_tree:
+            for n in m.node_tree.nodes:
+                if n.bl_idname == "ShaderNodeBsdfPrincipled":
+                    yield m, n
+
+
+def square_transmissive_tint(materials):
+    changed = []
+    for m, n in principled(materials):
+        weight = n.inputs["Transmission Weight"]
+        if weight.is_linked or weight.default_value < 1.0:
+            continue
+        base = n.inputs["Base Color"]
+        if base.is_linked:
+            tree = m.node_tree
+            src = base.links[0].from_socket
+            mul = tree.nodes.new("ShaderNodeMix")
+            mul.data_type, mul.blend_type = "RGBA", "MULTIPLY"
+            mul.inputs["Factor"].default_value = 1.0
+            tree.links.new(src, mul.inputs[6])
+            tree.links.new(src, mul.inputs[7])
+            tree.links.new(mul.outputs[2], base)
+        else:
+            r, g, b, a = base.default_value
+            base.default_value = (r * r, g * g, b * b, a)
+        changed.append(m.name)
+    return changed
+
+
+def spec_absorption(materials):
+    # sigma_a per channel = -ln(c) / d; Blender's node gives density * (1 - colour), so pick the
+    # largest sigma as density and the colour that leaves each channel's sigma.
+    changed = []
+    for m in materials:
+        if not m.node_tree:
+            continue
+        for n in m.node_tree.nodes:
+            if n.bl_idname != "ShaderNodeVolumeAbsorption":
+                continue
+            colour, density = n.inputs["Color"], n.inputs["Density"]
+            if colour.is_linked or density.is_linked:
+                continue
+            sigma = [-math.log(min(max(c, 1e-6), 1.0)) * density.default_value
+                     for c in colour.default_value[:3]]
+            top = max(sigma)
+            if top > 0:
+                density.default_value = top
+                colour.default_value = (*[1.0 - s / top for s in sigma], 1.0)
+                changed.append(m.name)
+    return changed
+
+
+def setup_camera(scene, a):
+    from mathutils import Vector
+    eye, target = Vector(point(a.eye)), Vector(point(a.look_at))
+    data = bpy.data.cameras.new("peer")
+    cam = bpy.data.objects.new("peer", data)
+    scene.collection.objects.link(cam)
+    cam.location = eye
+    cam.rotation_mode = "QUATERNION"
+    cam.rotation_quaternion = (target - eye).to_track_quat("-Z", "Y")
+    data.sensor_fit = "VERTICAL"
+    data.angle_y = math.radians(a.fov)
+    dist = (target - eye).length
+    data.clip_start, data.clip_end = dist * 1e-4, dist * 1e4
+    scene.camera = cam
+
+
+def setup_render(scene, a):
+    r = scene.render
+    r.engine = "CYCLES"
+    r.resolution_x, r.resolution_y, r.resolution_percentage = a.width, a.height, 100
+    r.threads_mode, r.threads = "FIXED", a.threads
+    r.film_transparent = False
+    r.use_motion_blur = False
+    c = scene.cycles
+    c.device, c.samples, c.seed, c.use_animated_seed = "CPU", a.spp, a.seed, False
+    c.use_adaptive_sampling = c.use_denoising = c.use_guiding = False
+    c.max_bounces = c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = a.bounces
+    c.transparent_max_bounces, c.volume_bounces = 64, 0
+    c.caustics_reflective = c.caustics_refractive = True
+    c.blur_glossy = c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
+    c.light_sampling_threshold = 0.0
+    c.pixel_filter_type, c.filter_width = "BOX", 1.0
+    scene.view_settings.view_transform = "Standard"
+    im = r.image_settings
+    im.file_format, im.color_depth, im.color_mode, im.exr_codec = "OPEN_EXR", "32", "RGBA", "ZIP"
+    r.use_file_extension = False
+    r.filepath = os.path.abspath(a.out)
+
+
+a = parse_args()
+t_start = time.time()
+import bpy  # noqa: E402  (slow: after argument errors are reported)
+
+bpy.ops.wm.read_factory_settings(use_empty=True)
+result = bpy.ops.import_scene.gltf(filepath=os.path.abspath(a.model),
+                                   export_import_convert_lighting_mode=a.lights)
+if "FINISHED" not in result:
+    sys.exit(f"{a.model}: Blender's glTF importer failed: {result}")
+scene = bpy.context.scene
+if a.distribution != "importer":
+    for _, n in principled(bpy.data.materials):
+        n.distribution = a.distribution
+tinted = square_transmissive_tint(bpy.data.materials) if a.tint == "squared" else []
+absorbing = spec_absorption(bpy.data.materials) if a.absorption == "spec" else []
+world = bpy.data.worlds.new("peer")
+world.use_nodes = True
+world.node_tree.nodes["Background"].inputs["Color"].default_value = (a.world,) * 3 + (1.0,)
+world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
+scene.world = world
+setup_camera(scene, a)
+setup_render(scene, a)
+t0 = time.time()
+bpy.ops.render.render(write_still=True)
+report = {
+    "model": a.model, "blender": bpy.app.version_string, "render_s": time.time() - t0,
+    "total_s": time.time() - t_start, "spp": a.spp, "bounces": a.bounces,
+    "distribution": a.distribution, "tint_squared": tinted, "spec_absorption": absorbing,
+    "load_average": os.getloadavg()[0],
+}
+print(json.dumps(report))
+if a.report:
+    with open(a.report, "w") as f:
+        json.dump(report, f, indent=1)
