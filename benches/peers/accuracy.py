@@ -104,6 +104,9 @@ def read_exr(path):
         if "RGBA" in ch:
             px = ch["RGBA"].pixels.astype(np.float64)
             return px[..., :3], px[..., 3]
+        if "RGB" in ch:
+            px = ch["RGB"].pixels.astype(np.float64)
+            return px, np.ones(px.shape[:2])
         rgb = np.stack([ch[c].pixels for c in "RGB"], -1).astype(np.float64)
         return rgb, (ch["A"].pixels.astype(np.float64) if "A" in ch else np.ones(rgb.shape[:2]))
 

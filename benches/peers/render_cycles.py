@@ -112,9 +112,11 @@ def spec_absorption(materials):
     return changed
 
 
-def setup_camera(scene, a):
+def setup_camera(scene, eye, look_at, fov):
+    """A camera at `eye` looking at `look_at` (glTF/OBJ coordinates, +Y up), vertical fov degrees."""
+    import bpy
     from mathutils import Vector
-    eye, target = Vector(point(a.eye)), Vector(point(a.look_at))
+    eye, target = Vector(point(eye)), Vector(point(look_at))
     data = bpy.data.cameras.new("peer")
     cam = bpy.data.objects.new("peer", data)
     scene.collection.objects.link(cam)
@@ -122,13 +124,14 @@ def setup_camera(scene, a):
     cam.rotation_mode = "QUATERNION"
     cam.rotation_quaternion = (target - eye).to_track_quat("-Z", "Y")
     data.sensor_fit = "VERTICAL"
-    data.angle_y = math.radians(a.fov)
+    data.angle_y = math.radians(fov)
     dist = (target - eye).length
     data.clip_start, data.clip_end = dist * 1e-4, dist * 1e4
     scene.camera = cam
 
 
 def setup_render(scene, a):
+    """Unbiased CPU Cycles; `a` has width, height, threads, spp, seed, bounces and out."""
     r = scene.render
     r.engine = "CYCLES"
     r.resolution_x, r.resolution_y, r.resolution_percentage = a.width, a.height, 100
@@ -151,37 +154,42 @@ def setup_render(scene, a):
     r.filepath = os.path.abspath(a.out)
 
 
-a = parse_args()
-t_start = time.time()
-import bpy  # noqa: E402  (slow: after argument errors are reported)
+def main():
+    a = parse_args()
+    t_start = time.time()
+    import bpy  # slow: after argument errors are reported
 
-bpy.ops.wm.read_factory_settings(use_empty=True)
-result = bpy.ops.import_scene.gltf(filepath=os.path.abspath(a.model),
-                                   export_import_convert_lighting_mode=a.lights)
-if "FINISHED" not in result:
-    sys.exit(f"{a.model}: Blender's glTF importer failed: {result}")
-scene = bpy.context.scene
-if a.distribution != "importer":
-    for _, n in principled(bpy.data.materials):
-        n.distribution = a.distribution
-tinted = square_transmissive_tint(bpy.data.materials) if a.tint == "squared" else []
-absorbing = spec_absorption(bpy.data.materials) if a.absorption == "spec" else []
-world = bpy.data.worlds.new("peer")
-world.use_nodes = True
-world.node_tree.nodes["Background"].inputs["Color"].default_value = (a.world,) * 3 + (1.0,)
-world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
-scene.world = world
-setup_camera(scene, a)
-setup_render(scene, a)
-t0 = time.time()
-bpy.ops.render.render(write_still=True)
-report = {
-    "model": a.model, "blender": bpy.app.version_string, "render_s": time.time() - t0,
-    "total_s": time.time() - t_start, "spp": a.spp, "bounces": a.bounces,
-    "distribution": a.distribution, "tint_squared": tinted, "spec_absorption": absorbing,
-    "load_average": os.getloadavg()[0],
-}
-print(json.dumps(report))
-if a.report:
-    with open(a.report, "w") as f:
-        json.dump(report, f, indent=1)
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    result = bpy.ops.import_scene.gltf(filepath=os.path.abspath(a.model),
+                                       export_import_convert_lighting_mode=a.lights)
+    if "FINISHED" not in result:
+        sys.exit(f"{a.model}: Blender's glTF importer failed: {result}")
+    scene = bpy.context.scene
+    if a.distribution != "importer":
+        for _, n in principled(bpy.data.materials):
+            n.distribution = a.distribution
+    tinted = square_transmissive_tint(bpy.data.materials) if a.tint == "squared" else []
+    absorbing = spec_absorption(bpy.data.materials) if a.absorption == "spec" else []
+    world = bpy.data.worlds.new("peer")
+    world.use_nodes = True
+    world.node_tree.nodes["Background"].inputs["Color"].default_value = (a.world,) * 3 + (1.0,)
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
+    scene.world = world
+    setup_camera(scene, a.eye, a.look_at, a.fov)
+    setup_render(scene, a)
+    t0 = time.time()
+    bpy.ops.render.render(write_still=True)
+    report = {
+        "model": a.model, "blender": bpy.app.version_string, "render_s": time.time() - t0,
+        "total_s": time.time() - t_start, "spp": a.spp, "bounces": a.bounces,
+        "distribution": a.distribution, "tint_squared": tinted, "spec_absorption": absorbing,
+        "load_average": os.getloadavg()[0],
+    }
+    print(json.dumps(report))
+    if a.report:
+        with open(a.report, "w") as f:
+            json.dump(report, f, indent=1)
+
+
+if __name__ == "__main__":
+    main()
