@@ -339,8 +339,18 @@ unsafe extern "C" fn on_memory(user: *mut c_void, bytes: isize, _post: bool) -> 
 }
 
 /// Intel Embree 4 over the scene's instances.
+/// Which triangle test Embree's scenes use.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Robustness {
+    /// `RTC_SCENE_FLAG_ROBUST`: watertight, as the Rust backends are.
+    Robust,
+    /// Embree's default, faster test, which lets rays through exactly at shared edges and vertices.
+    Fast,
+}
+
 pub struct EmbreeAccel {
     device: sys::RTCDevice,
+    robustness: Robustness,
     /// The top-level scene; its geometry IDs are instance indices.
     top: sys::RTCScene,
     /// Object-space scenes of meshes used by several instances (released in `Drop`).
@@ -365,8 +375,13 @@ unsafe impl Send for EmbreeAccel {}
 unsafe impl Sync for EmbreeAccel {}
 
 impl EmbreeAccel {
-    /// Builds Embree scenes over `scene`: one device, one committed top-level scene.
+    /// Builds robust Embree scenes over `scene`: one device, one committed top-level scene.
     pub fn build(scene: Arc<Scene>) -> Result<Self, AccelError> {
+        Self::build_with(scene, Robustness::Robust)
+    }
+
+    /// `build` with the chosen triangle test.
+    pub fn build_with(scene: Arc<Scene>, robustness: Robustness) -> Result<Self, AccelError> {
         // SAFETY: a NULL config asks for the default device; a NULL result is handled below.
         let device = unsafe { sys::rtcNewDevice(ptr::null()) };
         if device.is_null() {
@@ -379,6 +394,7 @@ impl EmbreeAccel {
         // From here on `Drop` releases whatever exists, also on the error paths.
         let mut accel = Self {
             device,
+            robustness,
             top: ptr::null_mut(),
             children: Vec::new(),
             filtered: false,
@@ -541,7 +557,8 @@ impl EmbreeAccel {
         Ok(child)
     }
 
-    /// An empty scene in robust mode; the caller owns the handle.
+    /// An empty scene, in robust mode unless `Robustness::Fast` was asked for; the caller owns the
+    /// handle.
     ///
     /// Without `ROBUST`, Embree's fast triangle test lets about 2% of rays aimed exactly at shared
     /// edges and vertices of a closed mesh slip through (tests/robustness.rs); glint promises
@@ -552,8 +569,10 @@ impl EmbreeAccel {
         if scene.is_null() {
             return Err(self.error("creating a scene"));
         }
-        // SAFETY: `scene` is live and not yet committed.
-        unsafe { sys::rtcSetSceneFlags(scene, sys::RTCSceneFlags::ROBUST) };
+        if self.robustness == Robustness::Robust {
+            // SAFETY: `scene` is live and not yet committed.
+            unsafe { sys::rtcSetSceneFlags(scene, sys::RTCSceneFlags::ROBUST) };
+        }
         if let Err(e) = self.check("creating a scene") {
             // SAFETY: `scene` is ours and referenced nowhere else.
             unsafe { sys::rtcReleaseScene(scene) };
@@ -715,7 +734,10 @@ impl Drop for EmbreeAccel {
 
 impl Accel for EmbreeAccel {
     fn name(&self) -> &'static str {
-        "embree"
+        match self.robustness {
+            Robustness::Robust => "embree",
+            Robustness::Fast => "embree-fast",
+        }
     }
 
     fn intersect(&self, ray: &Ray) -> Option<Hit> {

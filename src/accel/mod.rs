@@ -45,6 +45,9 @@ pub trait Accel: Send + Sync {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum Backend {
     Embree,
+    /// Embree without its robust mode: faster, but not watertight at shared edges and vertices
+    /// (for `glint bench rays`; renders should use `embree`).
+    EmbreeFast,
     Bvh,
     Grid,
     /// The `obvhs` crate's compressed wide BVH8 (a peer for benchmarks; `obvhs` feature).
@@ -78,6 +81,7 @@ impl fmt::Display for Backend {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
             Backend::Embree => "embree",
+            Backend::EmbreeFast => "embree-fast",
             Backend::Bvh => "bvh",
             Backend::Grid => "grid",
             Backend::Obvhs => "obvhs",
@@ -90,11 +94,12 @@ impl FromStr for Backend {
     fn from_str(s: &str) -> Result<Self, String> {
         match s.to_ascii_lowercase().as_str() {
             "embree" => Ok(Backend::Embree),
+            "embree-fast" => Ok(Backend::EmbreeFast),
             "bvh" => Ok(Backend::Bvh),
             "grid" => Ok(Backend::Grid),
             "obvhs" => Ok(Backend::Obvhs),
             _ => Err(format!(
-                "unknown backend '{s}' (expected embree, bvh, grid or obvhs)"
+                "unknown backend '{s}' (expected embree, embree-fast, bvh, grid or obvhs)"
             )),
         }
     }
@@ -117,8 +122,13 @@ pub fn build(scene: Arc<Scene>, backend: Backend) -> Result<Box<dyn Accel>, Acce
         Backend::Grid => Ok(Box::new(grid::GridAccel::build(scene))),
         #[cfg(feature = "embree")]
         Backend::Embree => Ok(Box::new(embree::EmbreeAccel::build(scene)?)),
+        #[cfg(feature = "embree")]
+        Backend::EmbreeFast => Ok(Box::new(embree::EmbreeAccel::build_with(
+            scene,
+            embree::Robustness::Fast,
+        )?)),
         #[cfg(not(feature = "embree"))]
-        Backend::Embree => Err(AccelError::EmbreeUnavailable),
+        Backend::Embree | Backend::EmbreeFast => Err(AccelError::EmbreeUnavailable),
         #[cfg(feature = "obvhs")]
         Backend::Obvhs => Ok(Box::new(obvhs::ObvhsAccel::build(scene))),
         #[cfg(not(feature = "obvhs"))]

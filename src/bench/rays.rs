@@ -285,7 +285,7 @@ impl Report {
             .unwrap_or_default();
         let _ = write!(
             s,
-            "{:<8} {:<8} {:>9} {:>9} {:>9}",
+            "{:<11} {:<8} {:>9} {:>9} {:>9}",
             "backend", "kind", "rays", "build ms", "memory MB"
         );
         for t in &threads {
@@ -296,7 +296,7 @@ impl Report {
             for k in &r.kinds {
                 let _ = write!(
                     s,
-                    "{:<8} {:<8} {:>9} {:>9.1} {:>9.1}",
+                    "{:<11} {:<8} {:>9} {:>9.1} {:>9.1}",
                     r.backend.to_string(),
                     k.kind.to_string(),
                     k.rays,

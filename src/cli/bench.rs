@@ -116,7 +116,7 @@ pub struct RaysArgs {
     /// triangles (N = 8 gives 1.3M), or `csg:showcase`, `csg:spheres` (64 CSG spheres on a ground
     /// plane) or `mesh:spheres[:N]` (the same spheres as icospheres of N subdivisions, default 4).
     pub input: Input,
-    /// Backends, comma separated (default: all built in).
+    /// Backends, comma separated (default: all built in, Embree both robust and fast).
     #[arg(long, value_enum, value_delimiter = ',')]
     pub backend: Vec<Backend>,
     /// Ray kinds, comma separated: primary, shadow, diffuse.
@@ -202,7 +202,11 @@ pub fn run(cmd: BenchCommand) -> Result<()> {
         BenchCommand::Rays(a) => {
             let config = RaysConfig {
                 backends: if a.backend.is_empty() {
-                    Backend::all_available()
+                    let mut all = Backend::all_available();
+                    if all.contains(&Backend::Embree) {
+                        all.push(Backend::EmbreeFast);
+                    }
+                    all
                 } else {
                     a.backend
                 },
