@@ -60,4 +60,6 @@ for f in "$root"/assets/meshopt/*.glb; do
         { printf "\\x$(printf %02x $mode)\\x00\\x0b\\x40\\x00"; head -c 2048 "$f" | tail -c 1500; } > "$c/meshopt_decode/$(basename "$f" .glb)-$mode"
     done
 done
+# What was found before (and fixed) seeds its target too.
+for d in "$root"/fuzz/regressions/*/; do cp "$d"* "$c/$(basename "$d")/" 2>/dev/null || true; done
 for t in "$c"/*; do echo "$(basename "$t"): $(ls "$t" | wc -l) seeds, $(du -sk "$t" | cut -f1) KiB"; done

@@ -11,15 +11,15 @@ kills=${2:-50}
 frames=${FRAMES:-24}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-run() { "$glint" turntable "$root/assets/demo/demo.glb" -o "$1" --frames "$frames" --width 32 --height 24 \
-            --spp 4 --backend bvh --threads 2 --quiet >/dev/null 2>&1; }
+run() { "$glint" turntable "$root/assets/demo/demo.glb" -o "$1" --frames "$frames" --width 64 --height 48 \
+            --spp 16 --backend bvh --threads 2 --quiet >/dev/null 2>&1; }
 
 start=$(date +%s%N)
 run "$work/whole"
 unbroken_ms=$(( ($(date +%s%N) - start) / 1000000 ))
 echo "unbroken run: $frames frames in $unbroken_ms ms"
 
-landed=0 mid_write=0 runs=0
+landed=0 mid_write=0 runs=0 cycles=0
 for ((k = 0; k < kills; k++)); do
     # A moment uniformly within one unbroken run's length (the resumed runs are shorter, so the
     # later kills often find them finished: those are counted apart).
@@ -40,10 +40,11 @@ for ((k = 0; k < kills; k++)); do
             echo "FAIL: a finished sequence differs after kill $k"; exit 1
         fi
         rm -rf "$work/broken"
+        cycles=$((cycles + 1))
     fi
 done
 run "$work/broken"; runs=$((runs + 1))
-echo "kills: $kills attempted, $landed landed on a running process, $mid_write while a frame was being written; $runs runs"
+echo "kills: $kills attempted, $landed landed on a running process, $mid_write while a frame was being written; $runs runs; $cycles sequences finished and checked mid-way, plus the last"
 bad=0
 for f in "$work"/whole/*; do cmp -s "$f" "$work/broken/$(basename "$f")" || { echo "differs: $(basename "$f")"; bad=1; }; done
 left=$(ls -A "$work/broken" | grep -c '\.tmp$' || true)

@@ -24,8 +24,8 @@ fn turntable(out: &Path) -> Command {
         .arg(demo())
         .arg("-o")
         .arg(out)
-        .args(["--frames", &FRAMES.to_string(), "--width", "24", "--height", "16"])
-        .args(["--spp", "4", "--backend", "bvh", "--quiet", "--threads", "2"])
+        .args(["--frames", &FRAMES.to_string(), "--width", "48", "--height", "32"])
+        .args(["--spp", "8", "--backend", "bvh", "--quiet", "--threads", "2"])
         .stdout(Stdio::null())
         .stderr(Stdio::null());
     c

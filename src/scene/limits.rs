@@ -8,10 +8,11 @@ pub const MAX_INSTANCES: usize = 1 << 24;
 /// static instance's triangles in world space, some 100 bytes apiece).
 pub const MAX_WORLD_TRIANGLES: usize = 1 << 27;
 /// Deepest CSG tree (operations inside operations); every ray walks it recursively.
-pub const MAX_CSG_DEPTH: usize = 64;
+pub const MAX_CSG_DEPTH: usize = 24;
 /// Deepest nesting of arrays and inline tables in a scene file, checked on the text before it is
-/// parsed (the parser recurses, as does the reading of a CSG tree).
-pub const MAX_TOML_NESTING: usize = 200;
+/// parsed: the parser recurses (the `toml` crate stops at 80 with a bare "max recursion depth"), as
+/// does the reading of a CSG tree (two levels of text per level of tree).
+pub const MAX_TOML_NESTING: usize = 64;
 
 /// What makes a scene too large, or None.
 pub fn too_large(instances: usize, world_triangles: usize) -> Option<String> {
@@ -79,7 +80,7 @@ mod tests {
         assert_eq!(toml_too_deep(&format!("x = 1\n{deep}")), Some(2));
         let quoted = format!("a = \"{}\" # {}\nb = '{}'\n", "[".repeat(300), "{".repeat(300), "[".repeat(300));
         assert_eq!(toml_too_deep(&quoted), None);
-        let fine = format!("[[asset]]\na = {}1{}\n", "[".repeat(100), "]".repeat(100));
+        let fine = format!("[[asset]]\na = {}1{}\n", "[".repeat(60), "]".repeat(60));
         assert_eq!(toml_too_deep(&fine), None);
     }
 
