@@ -23,6 +23,8 @@ for t in "${targets[@]}"; do
         "$bin/$t" "corpus/$t" -artifact_prefix="artifacts/$t/" \
         -jobs=1 -workers=1 -rss_limit_mb=1024 -malloc_limit_mb=1024 -timeout=10 -max_len=65536 \
         -max_total_time="$secs" -print_final_stats=1 $dict >"$log" 2>&1
+    # With -jobs=1 libFuzzer runs the fuzzing in a child whose output goes to fuzz-0.log.
+    [ -f fuzz-0.log ] && cat fuzz-0.log >>"$log" && rm -f fuzz-0.log
     cpu=$(awk '{ printf "%.1f", ($1 + $2) / 60 }' "artifacts/$t/time")
     execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
     crashes=$(ls "artifacts/$t" | grep -c -E '^(crash|oom|timeout|leak|slow-unit)-' || true)

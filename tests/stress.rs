@@ -24,8 +24,23 @@ fn turntable(out: &Path) -> Command {
         .arg(demo())
         .arg("-o")
         .arg(out)
-        .args(["--frames", &FRAMES.to_string(), "--width", "48", "--height", "32"])
-        .args(["--spp", "8", "--backend", "bvh", "--quiet", "--threads", "2"])
+        .args([
+            "--frames",
+            &FRAMES.to_string(),
+            "--width",
+            "48",
+            "--height",
+            "32",
+        ])
+        .args([
+            "--spp",
+            "8",
+            "--backend",
+            "bvh",
+            "--quiet",
+            "--threads",
+            "2",
+        ])
         .stdout(Stdio::null())
         .stderr(Stdio::null());
     c
@@ -74,9 +89,16 @@ fn a_turntable_killed_at_any_moment_and_resumed_ends_with_the_unbroken_frames() 
     assert!(kills > 0, "no run was still going when killed");
     let got = files(&broken);
     let names = |v: &[(String, Vec<u8>)]| v.iter().map(|(n, _)| n.clone()).collect::<Vec<_>>();
-    assert_eq!(names(&got), names(&expected), "frames or temporary files differ");
+    assert_eq!(
+        names(&got),
+        names(&expected),
+        "frames or temporary files differ"
+    );
     for ((name, a), (_, b)) in got.iter().zip(&expected) {
-        assert!(a == b, "{name} differs from the unbroken run's after {kills} kills");
+        assert!(
+            a == b,
+            "{name} differs from the unbroken run's after {kills} kills"
+        );
     }
 }
 
@@ -87,8 +109,23 @@ fn render(out: &Path, threads: u32, seed: u64) -> Command {
         .arg(demo())
         .arg("-o")
         .arg(out)
-        .args(["--width", "40", "--height", "30", "--spp", "4", "--backend", "bvh", "--quiet"])
-        .args(["--threads", &threads.to_string(), "--seed", &seed.to_string()])
+        .args([
+            "--width",
+            "40",
+            "--height",
+            "30",
+            "--spp",
+            "4",
+            "--backend",
+            "bvh",
+            "--quiet",
+        ])
+        .args([
+            "--threads",
+            &threads.to_string(),
+            "--seed",
+            &seed.to_string(),
+        ])
         .stdout(Stdio::null())
         .stderr(Stdio::null());
     c

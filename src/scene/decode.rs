@@ -52,7 +52,11 @@ pub fn decode_rgba8(bytes: &[u8]) -> Result<Rgba8, DecodeError> {
     Ok(Rgba8 {
         width,
         height,
-        pixels: img.into_raw().chunks_exact(4).map(|p| [p[0], p[1], p[2], p[3]]).collect(),
+        pixels: img
+            .into_raw()
+            .chunks_exact(4)
+            .map(|p| [p[0], p[1], p[2], p[3]])
+            .collect(),
     })
 }
 
@@ -85,7 +89,16 @@ mod tests {
         let crc = crc32(&bytes[12..29]);
         bytes[29..33].copy_from_slice(&crc.to_be_bytes());
         let e = decode_rgba8(&bytes).unwrap_err();
-        assert!(matches!(e, DecodeError::TooLarge { width: 65536, height: 65536 }), "{e}");
+        assert!(
+            matches!(
+                e,
+                DecodeError::TooLarge {
+                    width: 65536,
+                    height: 65536
+                }
+            ),
+            "{e}"
+        );
         assert!(e.to_string().contains("65536 x 65536"), "{e}");
         assert!(check_size(8192, 8192).is_ok());
         assert!(check_size(8193, 8192).is_err());
@@ -97,7 +110,11 @@ mod tests {
         for &b in data {
             c ^= b as u32;
             for _ in 0..8 {
-                c = if c & 1 != 0 { 0xEDB8_8320 ^ (c >> 1) } else { c >> 1 };
+                c = if c & 1 != 0 {
+                    0xEDB8_8320 ^ (c >> 1)
+                } else {
+                    c >> 1
+                };
             }
         }
         !c

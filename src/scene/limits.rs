@@ -78,7 +78,12 @@ mod tests {
     fn nesting_is_counted_outside_strings_and_comments() {
         let deep = format!("a = {}1{}\n", "[".repeat(300), "]".repeat(300));
         assert_eq!(toml_too_deep(&format!("x = 1\n{deep}")), Some(2));
-        let quoted = format!("a = \"{}\" # {}\nb = '{}'\n", "[".repeat(300), "{".repeat(300), "[".repeat(300));
+        let quoted = format!(
+            "a = \"{}\" # {}\nb = '{}'\n",
+            "[".repeat(300),
+            "{".repeat(300),
+            "[".repeat(300)
+        );
         assert_eq!(toml_too_deep(&quoted), None);
         let fine = format!("[[asset]]\na = {}1{}\n", "[".repeat(60), "]".repeat(60));
         assert_eq!(toml_too_deep(&fine), None);
@@ -89,6 +94,8 @@ mod tests {
         assert!(too_large(MAX_INSTANCES, MAX_WORLD_TRIANGLES).is_none());
         let e = too_large(MAX_INSTANCES + 1, 0).unwrap();
         assert!(e.contains(&(MAX_INSTANCES + 1).to_string()), "{e}");
-        assert!(too_large(1, MAX_WORLD_TRIANGLES + 1).unwrap().contains("triangles"));
+        assert!(too_large(1, MAX_WORLD_TRIANGLES + 1)
+            .unwrap()
+            .contains("triangles"));
     }
 }

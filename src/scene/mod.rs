@@ -691,7 +691,11 @@ impl Scene {
         let triangles = self
             .instances
             .iter()
-            .map(|i| self.meshes.get(i.mesh as usize).map_or(0, |m| m.indices.len()))
+            .map(|i| {
+                self.meshes
+                    .get(i.mesh as usize)
+                    .map_or(0, |m| m.indices.len())
+            })
             .fold(0usize, usize::saturating_add);
         limits::too_large(self.instances.len(), triangles)
     }

@@ -276,7 +276,8 @@ fn convert_material(
     }
     let label = format!("material '{}'", m.name);
     if let Some(t) = &m.diffuse_texture {
-        mat.base_color_tex = texture(t, true, (search, files), scene, textures, &label).map(TexRef::new);
+        mat.base_color_tex =
+            texture(t, true, (search, files), scene, textures, &label).map(TexRef::new);
     }
     let normal = m.normal_texture.clone().or_else(|| {
         ["norm", "map_bump", "map_Bump", "bump"]
@@ -284,10 +285,12 @@ fn convert_material(
             .find_map(|k| m.unknown_param.get(*k).cloned())
     });
     if let Some(t) = &normal {
-        mat.normal_tex = texture(t, false, (search, files), scene, textures, &label).map(TexRef::new);
+        mat.normal_tex =
+            texture(t, false, (search, files), scene, textures, &label).map(TexRef::new);
     }
     if let Some(t) = m.unknown_param.get("map_Ke") {
-        mat.emissive_tex = texture(t, true, (search, files), scene, textures, &label).map(TexRef::new);
+        mat.emissive_tex =
+            texture(t, true, (search, files), scene, textures, &label).map(TexRef::new);
         if mat.emissive == Vec3::ZERO {
             mat.emissive = Vec3::ONE;
         }

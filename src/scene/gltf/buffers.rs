@@ -36,7 +36,12 @@ impl Buffers {
 
     /// Charges a read of `count` elements of `size` bytes (what it allocates) to the budget, or
     /// refuses it before anything is allocated.
-    pub(super) fn charge(&self, name: &str, count: usize, size: usize) -> Result<(), AccessorError> {
+    pub(super) fn charge(
+        &self,
+        name: &str,
+        count: usize,
+        size: usize,
+    ) -> Result<(), AccessorError> {
         let bytes = count.saturating_mul(size.max(1));
         match self.left.get().checked_sub(bytes) {
             Some(rest) => {

@@ -71,7 +71,10 @@ pub enum GltfError {
         matrices: usize,
         joints: usize,
     },
-    #[error("{node}: EXT_mesh_gpu_instancing places {count} instances, more than the {} glint accepts", crate::scene::limits::MAX_INSTANCES)]
+    #[error(
+        "{node}: EXT_mesh_gpu_instancing places {count} instances, more than the {} glint accepts",
+        crate::scene::limits::MAX_INSTANCES
+    )]
     TooManyInstances { node: String, count: usize },
     #[error("EXT_mesh_gpu_instancing: {attribute} names accessor {index}, which does not exist")]
     InstancingAccessor { attribute: String, index: usize },

@@ -60,8 +60,8 @@ type SkinAttrs = (Vec<[u16; 4]>, Vec<Vec4>);
 /// Loads a .gltf or .glb file keeping its animation number `animation` (when it has animations).
 /// Never panics on malformed input: every problem is a `LoadError`.
 pub fn load(path: &Path, animation: usize) -> Result<Scene, LoadError> {
-    let bytes = std::fs::read(path)
-        .map_err(|e| LoadError::new(path, GltfError::Read(e).to_string()))?;
+    let bytes =
+        std::fs::read(path).map_err(|e| LoadError::new(path, GltfError::Read(e).to_string()))?;
     load_bytes(path, &bytes, animation)
 }
 
