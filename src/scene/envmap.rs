@@ -166,11 +166,15 @@ fn read_exr(bytes: &[u8]) -> Result<(usize, usize, Vec<Vec3>), EnvMapError> {
         .no_deep_data()
         .largest_resolution_level()
         .rgba_channels(
-            |res, _| {
-                let (w, h) = (res.width(), res.height());
-                (w, vec![Vec3::ZERO; w * h])
-            },
-            |(w, px): &mut (usize, Vec<Vec3>), Vec2(x, y), (r, g, b, _a): (f32, f32, f32, f32)| {
+            // The pixels are allocated when the first block has decoded, not from the header: a
+            // file of a few hundred bytes may declare 60 million pixels and hold none of them.
+            |res, _| ((res.width(), res.height()), Vec::new()),
+            |((w, h), px): &mut ((usize, usize), Vec<Vec3>),
+             Vec2(x, y),
+             (r, g, b, _a): (f32, f32, f32, f32)| {
+                if px.is_empty() {
+                    px.resize(*w * *h, Vec3::ZERO);
+                }
                 px[y * *w + x] = Vec3::new(r, g, b)
             },
         )
