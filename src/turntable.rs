@@ -564,6 +564,24 @@ pub fn read_display_frame(
     }
 }
 
+/// Removes what killed runs left of `frames` (and of the other files named in `extra`, previews):
+/// temporary files whose writer is gone. Returns how many. A resumed run calls it first, so that a
+/// sequence killed any number of times ends with its frames and nothing else.
+pub fn remove_stale_temps(names: &FrameNames, frames: &[u32], extra: &[&Path]) -> usize {
+    let ours: std::collections::HashSet<String> = frames
+        .iter()
+        .filter_map(|&f| Some(names.path(f).file_name()?.to_string_lossy().into_owned()))
+        .collect();
+    let mut removed = film::remove_stale_temps(names.dir(), |n| ours.contains(n));
+    for p in extra {
+        let (Some(dir), Some(name)) = (p.parent(), p.file_name()) else {
+            continue;
+        };
+        removed += film::remove_stale_temps(dir, |n| std::ffi::OsStr::new(n) == name);
+    }
+    removed
+}
+
 /// Writes `out` through a temporary file beside it and a rename, like `film::write`.
 fn write_atomically(out: &Path, write: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
     let name = out

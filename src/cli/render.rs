@@ -216,6 +216,12 @@ pub fn run(mut args: RenderArgs) -> Result<()> {
     }
     check_sample_shard(&args)?;
     args.common.set_threads()?;
+    // What an earlier, killed render of these outputs left: temporary files of dead processes.
+    for out in std::iter::once(&args.output).chain(&args.spp_map) {
+        let name = out.file_name().unwrap_or_default();
+        let dir = out.parent().unwrap_or(Path::new(""));
+        film::remove_stale_temps(dir, |n| std::ffi::OsStr::new(n) == name);
+    }
 
     let mut warn = |w: &str| eprintln!("warning: {}: {w}", args.input.display());
     let job = Setup::load(&args.input, &args.options(), &mut warn)?.build()?;

@@ -110,6 +110,7 @@ struct Plan {
 pub fn run(args: TurntableArgs) -> Result<()> {
     let plan = plan(&args)?;
     args.common.set_threads()?;
+    remove_stale_temps(&args, &plan);
     let exists = |f: &u32| plan.names.path(*f).exists();
     if !args.overwrite && plan.selected.iter().all(exists) {
         // A finished (or finished-by-other-shards) sequence: no need to load or build anything.
@@ -177,6 +178,20 @@ fn plan(args: &TurntableArgs) -> Result<Plan> {
         names,
         selected,
     })
+}
+
+/// Clears what killed runs of this sequence left: temporary files of dead processes beside the
+/// selected frames and the previews.
+fn remove_stale_temps(args: &TurntableArgs, plan: &Plan) {
+    let previews: Vec<&Path> = [&args.preview, &args.contact_sheet]
+        .into_iter()
+        .flatten()
+        .map(PathBuf::as_path)
+        .collect();
+    let stale = turntable::remove_stale_temps(&plan.names, &plan.selected, &previews);
+    if stale > 0 && !args.common.quiet {
+        eprintln!("removed {stale} temporary files that an interrupted run left behind");
+    }
 }
 
 /// The GIF and the contact sheet, once every frame of the sequence is on disk.

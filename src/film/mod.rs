@@ -205,6 +205,44 @@ fn temp_path(path: &Path) -> PathBuf {
     path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
 }
 
+/// Removes the temporary files that killed writes left in `dir` (see `write_through_temp`): those of
+/// a final name `ours` accepts whose writing process is gone. A live process's file is left to it, so
+/// that a run resuming beside another (an overlapping shard) never pulls a file from under it.
+/// Returns how many were removed.
+pub fn remove_stale_temps(dir: &Path, ours: impl Fn(&str) -> bool) -> usize {
+    let dir = if dir.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        dir
+    };
+    let Ok(entries) = fs::read_dir(dir) else {
+        return 0;
+    };
+    entries
+        .flatten()
+        .filter(|e| {
+            let name = e.file_name();
+            let Some((target, pid)) = name.to_str().and_then(parse_temp_name) else {
+                return false;
+            };
+            ours(target) && !process_alive(pid) && fs::remove_file(e.path()).is_ok()
+        })
+        .count()
+}
+
+/// The final name and writer's process id of a temporary file name `.{name}.{pid}.tmp`.
+fn parse_temp_name(file: &str) -> Option<(&str, u32)> {
+    let rest = file.strip_prefix('.')?.strip_suffix(".tmp")?;
+    let (name, pid) = rest.rsplit_once('.')?;
+    Some((name, pid.parse().ok()?))
+}
+
+/// Whether process `pid` runs; without /proc nothing can be told and it counts as running.
+fn process_alive(pid: u32) -> bool {
+    let proc = Path::new("/proc");
+    !proc.join("self").exists() || proc.join(pid.to_string()).exists()
+}
+
 fn write_png(image: &Image, path: &Path, display: &Display) -> Result<(), EncodeError> {
     // Opaque RGB: the background is what the camera sees there (alpha is kept in EXR).
     let mut buf = Vec::with_capacity(image.width * image.height * 3);
@@ -266,6 +304,30 @@ pub fn read_exr(path: &Path) -> Result<Image, FilmError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn stale_temps_of_our_names_go_and_live_or_other_ones_stay() {
+        let dir = tempfile::tempdir().unwrap();
+        // Beyond any pid_max (4194304): no such process.
+        let dead = 4_000_000_000u32;
+        let live = std::process::id();
+        let names = [
+            format!(".a.png.{dead}.tmp"),
+            format!(".a.png.{live}.tmp"),
+            format!(".b.png.{dead}.tmp"),
+            format!("a.png.{dead}.tmp"),
+        ];
+        for n in &names {
+            fs::write(dir.path().join(n), b"partial").unwrap();
+        }
+        assert_eq!(remove_stale_temps(dir.path(), |n| n == "a.png"), 1);
+        assert!(!dir.path().join(&names[0]).exists());
+        for n in &names[1..] {
+            assert!(dir.path().join(n).exists(), "{n}");
+        }
+        assert_eq!(parse_temp_name(".x.y.exr.12.tmp"), Some(("x.y.exr", 12)));
+        assert_eq!(parse_temp_name(".x.exr.tmp"), None);
+    }
 
     #[test]
     fn exr_round_trip_is_exact_and_png_is_written() {

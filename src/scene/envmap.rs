@@ -8,6 +8,7 @@
 //! `rotation` turns the map about +Y (or any rotation, e.g. from a turntable) before that lookup.
 
 use std::f32::consts::PI;
+use std::io::Cursor;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -56,14 +57,18 @@ impl EnvMap {
     /// values are clamped to zero, since one of them would poison every pixel that sees it.
     pub fn load(path: &Path) -> Result<Self, LoadError> {
         let err = |e: EnvMapError| LoadError::new(path, e.to_string());
-        let ext = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase);
-        let (w, h, mut px) = match ext.as_deref() {
-            Some("exr") => read_exr(path).map_err(err)?,
-            Some("hdr") => read_hdr(path).map_err(err)?,
-            _ => return Err(err(EnvMapError::Format)),
+        format_of(path).map_err(err)?;
+        let bytes = std::fs::read(path).map_err(|e| err(EnvMapError::Open(e)))?;
+        Self::from_bytes(path, &bytes)
+    }
+
+    /// Reads a .exr or .hdr file whose bytes are in hand; `path` names it (and its extension the
+    /// format). The image size is checked against the pixel cap before its pixels are allocated.
+    pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Self, LoadError> {
+        let err = |e: EnvMapError| LoadError::new(path, e.to_string());
+        let (w, h, mut px) = match format_of(path).map_err(err)? {
+            Format::Exr => read_exr(bytes).map_err(err)?,
+            Format::Hdr => read_hdr(bytes).map_err(err)?,
         };
         for p in &mut px {
             *p = Vec3::from_array(
@@ -113,6 +118,24 @@ impl EnvMap {
     }
 }
 
+/// The two formats an environment map may have.
+enum Format {
+    Exr,
+    Hdr,
+}
+
+fn format_of(path: &Path) -> Result<Format, EnvMapError> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("exr") => Ok(Format::Exr),
+        Some("hdr") => Ok(Format::Hdr),
+        _ => Err(EnvMapError::Format),
+    }
+}
+
 /// Why an environment map cannot be read.
 #[derive(Debug, thiserror::Error)]
 enum EnvMapError {
@@ -126,21 +149,39 @@ enum EnvMapError {
     Open(std::io::Error),
     #[error("reading Radiance HDR: {0}")]
     Hdr(image::ImageError),
+    #[error(transparent)]
+    Size(#[from] super::decode::DecodeError),
 }
 
-fn read_exr(path: &Path) -> Result<(usize, usize, Vec<Vec3>), EnvMapError> {
-    use exr::prelude::{read_first_rgba_layer_from_file, Vec2};
-    let img = read_first_rgba_layer_from_file(
-        path,
-        |res, _| {
-            let (w, h) = (res.width(), res.height());
-            (w, vec![Vec3::ZERO; w * h])
-        },
-        |(w, px), Vec2(x, y), (r, g, b, _a): (f32, f32, f32, f32)| {
-            px[y * *w + x] = Vec3::new(r, g, b)
-        },
-    )
-    .map_err(EnvMapError::Exr)?;
+fn read_exr(bytes: &[u8]) -> Result<(usize, usize, Vec<Vec3>), EnvMapError> {
+    use exr::prelude::{ReadChannels, ReadLayers, Vec2};
+    // The header alone first: the reader below allocates the whole image from the size it declares.
+    let meta = exr::meta::MetaData::read_from_buffered(Cursor::new(bytes), false)
+        .map_err(EnvMapError::Exr)?;
+    for header in &meta.headers {
+        let size = header.layer_size;
+        super::decode::check_size(size.width() as u64, size.height() as u64)?;
+    }
+    let img = exr::prelude::read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .rgba_channels(
+            // The pixels are allocated when the first block has decoded, not from the header: a
+            // file of a few hundred bytes may declare 60 million pixels and hold none of them.
+            |res, _| ((res.width(), res.height()), Vec::new()),
+            |((w, h), px): &mut ((usize, usize), Vec<Vec3>),
+             Vec2(x, y),
+             (r, g, b, _a): (f32, f32, f32, f32)| {
+                if px.is_empty() {
+                    px.resize(*w * *h, Vec3::ZERO);
+                }
+                px[y * *w + x] = Vec3::new(r, g, b)
+            },
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .from_buffered(Cursor::new(bytes))
+        .map_err(EnvMapError::Exr)?;
     let size = img.layer_data.size;
     Ok((
         size.width(),
@@ -149,10 +190,11 @@ fn read_exr(path: &Path) -> Result<(usize, usize, Vec<Vec3>), EnvMapError> {
     ))
 }
 
-fn read_hdr(path: &Path) -> Result<(usize, usize, Vec<Vec3>), EnvMapError> {
-    let file = std::fs::File::open(path).map_err(EnvMapError::Open)?;
-    let decoder = image::codecs::hdr::HdrDecoder::new(std::io::BufReader::new(file))
-        .map_err(EnvMapError::Hdr)?;
+fn read_hdr(bytes: &[u8]) -> Result<(usize, usize, Vec<Vec3>), EnvMapError> {
+    let decoder =
+        image::codecs::hdr::HdrDecoder::new(Cursor::new(bytes)).map_err(EnvMapError::Hdr)?;
+    let meta = decoder.metadata();
+    super::decode::check_size(meta.width.into(), meta.height.into())?;
     let img = image::DynamicImage::from_decoder(decoder)
         .map_err(EnvMapError::Hdr)?
         .into_rgb32f();

@@ -2,6 +2,7 @@
 //! Loaders (`gltf`, `obj`) produce it; accelerators and the integrator only read it.
 
 pub mod animation;
+pub mod decode;
 pub mod defaults;
 pub mod desc;
 pub mod envmap;
@@ -10,8 +11,10 @@ pub mod features;
 pub mod generate;
 pub mod gltf;
 pub mod layers;
+pub mod limits;
 pub mod mesh;
 pub mod obj;
+mod quiet_panic;
 pub mod texture;
 pub mod transform;
 
@@ -529,6 +532,9 @@ impl Scene {
     /// Checks the invariants the accelerators rely on; a loader bug or odd file becomes an error here.
     pub fn validate(&self) -> Result<(), LoadError> {
         let err = |m: String| Err(LoadError::new(&self.source, m));
+        if let Some(why) = self.too_large() {
+            return err(why);
+        }
         for (i, m) in self.meshes.iter().enumerate() {
             let n = m.positions.len() as u32;
             if m.indices.iter().flatten().any(|&k| k >= n) {
@@ -677,6 +683,21 @@ impl Scene {
             .iter()
             .map(|i| self.meshes[i.mesh as usize].indices.len())
             .sum()
+    }
+
+    /// Why the scene is more than glint accepts (`limits`), or None; meshes out of range count as
+    /// empty here (`validate` reports them).
+    pub fn too_large(&self) -> Option<String> {
+        let triangles = self
+            .instances
+            .iter()
+            .map(|i| {
+                self.meshes
+                    .get(i.mesh as usize)
+                    .map_or(0, |m| m.indices.len())
+            })
+            .fold(0usize, usize::saturating_add);
+        limits::too_large(self.instances.len(), triangles)
     }
 
     /// Whether a candidate hit counts, for materials with alpha cutouts or blending. Accelerators call

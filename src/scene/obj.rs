@@ -10,18 +10,28 @@
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::io::BufReader;
-use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
 use super::{AlphaMode, Instance, LoadError, Material, Mesh, Scene, TexRef, Texture, Wrap};
 
+/// Reads a file an OBJ names (an MTL library, a texture), given its full path.
+pub type Files<'a> = dyn Fn(&Path) -> std::io::Result<Vec<u8>> + 'a;
+
 /// Loads an .obj file and the .mtl files it names. Never panics on malformed input.
 pub fn load(path: &Path) -> Result<Scene, LoadError> {
-    match catch_unwind(AssertUnwindSafe(|| load_inner(path))) {
-        Ok(r) => r,
-        Err(_) => Err(LoadError::new(
+    let bytes =
+        std::fs::read(path).map_err(|e| LoadError::new(path, format!("cannot read file: {e}")))?;
+    load_bytes(path, &bytes, &|p: &Path| std::fs::read(p))
+}
+
+/// Loads an OBJ whose bytes are in hand; `path` names it in errors and the MTL libraries and
+/// textures it names are read through `files` from beside it.
+pub fn load_bytes(path: &Path, bytes: &[u8], files: &Files) -> Result<Scene, LoadError> {
+    match super::quiet_panic::catch(|| load_inner(path, bytes, files)) {
+        Some(r) => r,
+        None => Err(LoadError::new(
             path,
             "malformed OBJ (the OBJ reader failed on an inconsistent file)",
         )),
@@ -44,13 +54,13 @@ pub fn default_obj_material() -> Material {
     }
 }
 
-fn load_inner(path: &Path) -> Result<Scene, LoadError> {
-    let (models, materials, search, warnings) = read_obj(path)?;
+fn load_inner(path: &Path, bytes: &[u8], files: &Files) -> Result<Scene, LoadError> {
+    let (models, materials, search, warnings) = read_obj(path, bytes, files)?;
     let mut scene = Scene::default();
     scene.warnings.extend(warnings);
     let mut textures: HashMap<(PathBuf, bool), Option<u32>> = HashMap::new();
     for m in &materials {
-        let mat = convert_material(m, &search, &mut scene, &mut textures);
+        let mat = convert_material(m, &search, files, &mut scene, &mut textures);
         scene.materials.push(mat);
     }
     let mut default_material: Option<u32> = None;
@@ -97,9 +107,7 @@ type ObjContents = (
     Vec<String>,
 );
 
-fn read_obj(path: &Path) -> Result<ObjContents, LoadError> {
-    let file = std::fs::File::open(path)
-        .map_err(|e| LoadError::new(path, format!("cannot read file: {e}")))?;
+fn read_obj(path: &Path, bytes: &[u8], files: &Files) -> Result<ObjContents, LoadError> {
     let dir = path
         .parent()
         .unwrap_or_else(|| Path::new("."))
@@ -112,10 +120,13 @@ fn read_obj(path: &Path) -> Result<ObjContents, LoadError> {
         ignore_points: true,
         ignore_lines: true,
     };
-    let mut reader = BufReader::new(file);
+    let mut reader = BufReader::new(bytes);
     let (models, materials) = tobj::load_obj_buf(&mut reader, &opts, |mtl: &Path| {
         let full = dir.join(mtl);
-        let r = tobj::load_mtl(&full);
+        let r = match files(&full) {
+            Ok(text) => tobj::load_mtl_buf(&mut BufReader::new(&text[..])),
+            Err(_) => Err(tobj::LoadError::OpenFileFailed),
+        };
         match &r {
             Ok(_) => mtl_dirs
                 .borrow_mut()
@@ -206,6 +217,7 @@ fn parse3(s: &str) -> Option<Vec3> {
 fn convert_material(
     m: &tobj::Material,
     search: &[PathBuf],
+    files: &Files,
     scene: &mut Scene,
     textures: &mut HashMap<(PathBuf, bool), Option<u32>>,
 ) -> Material {
@@ -264,7 +276,8 @@ fn convert_material(
     }
     let label = format!("material '{}'", m.name);
     if let Some(t) = &m.diffuse_texture {
-        mat.base_color_tex = texture(t, true, search, scene, textures, &label).map(TexRef::new);
+        mat.base_color_tex =
+            texture(t, true, (search, files), scene, textures, &label).map(TexRef::new);
     }
     let normal = m.normal_texture.clone().or_else(|| {
         ["norm", "map_bump", "map_Bump", "bump"]
@@ -272,10 +285,12 @@ fn convert_material(
             .find_map(|k| m.unknown_param.get(*k).cloned())
     });
     if let Some(t) = &normal {
-        mat.normal_tex = texture(t, false, search, scene, textures, &label).map(TexRef::new);
+        mat.normal_tex =
+            texture(t, false, (search, files), scene, textures, &label).map(TexRef::new);
     }
     if let Some(t) = m.unknown_param.get("map_Ke") {
-        mat.emissive_tex = texture(t, true, search, scene, textures, &label).map(TexRef::new);
+        mat.emissive_tex =
+            texture(t, true, (search, files), scene, textures, &label).map(TexRef::new);
         if mat.emissive == Vec3::ZERO {
             mat.emissive = Vec3::ONE;
         }
@@ -283,9 +298,9 @@ fn convert_material(
     mat
 }
 
-/// Finds a texture named in an MTL statement (which may carry options such as `-bm 1` before the
-/// file name) next to the MTL or the OBJ.
-fn resolve(spec: &str, search: &[PathBuf]) -> Option<PathBuf> {
+/// Finds and reads a texture named in an MTL statement (which may carry options such as `-bm 1`
+/// before the file name) next to the MTL or the OBJ.
+fn resolve(spec: &str, search: &[PathBuf], files: &Files) -> Option<(PathBuf, Vec<u8>)> {
     let spec = spec.trim().replace('\\', "/");
     let last = spec.split_whitespace().last().unwrap_or("").to_string();
     for cand in [spec.as_str(), last.as_str()] {
@@ -294,8 +309,8 @@ fn resolve(spec: &str, search: &[PathBuf]) -> Option<PathBuf> {
         }
         for d in search {
             let p = d.join(cand);
-            if p.is_file() {
-                return Some(p);
+            if let Ok(bytes) = files(&p) {
+                return Some((p, bytes));
             }
         }
     }
@@ -305,12 +320,12 @@ fn resolve(spec: &str, search: &[PathBuf]) -> Option<PathBuf> {
 fn texture(
     spec: &str,
     srgb: bool,
-    search: &[PathBuf],
+    (search, files): (&[PathBuf], &Files),
     scene: &mut Scene,
     textures: &mut HashMap<(PathBuf, bool), Option<u32>>,
     label: &str,
 ) -> Option<u32> {
-    let Some(file) = resolve(spec, search) else {
+    let Some((file, bytes)) = resolve(spec, search, files) else {
         scene.warnings.push(format!(
             "{label}: texture '{}' not found; ignored",
             spec.trim()
@@ -320,17 +335,16 @@ fn texture(
     if let Some(t) = textures.get(&(file.clone(), srgb)) {
         return *t;
     }
-    let out = match image::open(&file) {
+    let out = match super::decode::decode_rgba8(&bytes) {
         Ok(img) => {
-            let img = img.to_rgba8();
             scene.textures.push(Texture {
                 name: file
                     .file_name()
                     .map(|f| f.to_string_lossy().into_owned())
                     .unwrap_or_default(),
-                width: img.width() as usize,
-                height: img.height() as usize,
-                pixels: img.pixels().map(|p| p.0).collect(),
+                width: img.width,
+                height: img.height,
+                pixels: img.pixels,
                 srgb,
                 wrap_s: Wrap::Repeat,
                 wrap_t: Wrap::Repeat,

@@ -252,6 +252,16 @@ impl NodeSpec {
         self.resolve_with(material_index, &|_| None, default_material)
     }
 
+    /// Levels of the tree: 1 for a shape, one more than its deepest operand for an operation.
+    pub fn depth(&self) -> usize {
+        match &self.kind {
+            KindSpec::Union(k) | KindSpec::Intersection(k) | KindSpec::Difference(k) => {
+                1 + k.iter().map(NodeSpec::depth).max().unwrap_or(0)
+            }
+            _ => 1,
+        }
+    }
+
     /// As `resolve`, with `mesh_solid` giving the closed mesh of a name for `mesh` operands (`None`:
     /// no such mesh).
     pub fn resolve_with(

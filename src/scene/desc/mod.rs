@@ -93,13 +93,28 @@ struct AssetDesc {
     materials: HashMap<String, Spanned<String>>,
 }
 
-/// Loads a scene file and every asset it names.
 /// A message about the byte range `span` of the file's text, as an error naming its line.
 type At<'a> = dyn Fn(Range<usize>, String) -> LoadError + 'a;
 
+/// Loads a scene file and every asset it names.
 pub fn load(path: &Path) -> Result<Scene, LoadError> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| LoadError::new(path, format!("cannot read: {e}")))?;
+    load_str(path, &text)
+}
+
+/// Reads a scene file whose text is in hand; `path` names it in errors, and its assets are read
+/// from beside it.
+pub fn load_str(path: &Path, text: &str) -> Result<Scene, LoadError> {
+    if let Some(line) = super::limits::toml_too_deep(text) {
+        return Err(LoadError::new(
+            path,
+            format!(
+                "line {line}: arrays and tables nested more than {} deep",
+                super::limits::MAX_TOML_NESTING
+            ),
+        ));
+    }
     let desc: Desc = toml::from_str(&text).map_err(|e| LoadError::new(path, e.to_string()))?;
     let at = |span: Range<usize>, msg: String| {
         let line = text[..span.start.min(text.len())].lines().count().max(1);
@@ -249,6 +264,13 @@ fn add_asset(
         scene.warnings.push(format!("{}: {w}", rel.display()));
     }
     scene.append(asset, &remap, |u| blend(start, end, u));
+    // Checked as the scene grows, so that a file naming one asset a million times stops early.
+    if let Some(why) = scene.too_large() {
+        return Err(at(
+            a.path.span(),
+            format!("asset '{}': {why}", rel.display()),
+        ));
+    }
     Ok(())
 }
 
@@ -333,6 +355,13 @@ fn add_objects(
                 0
             }
         };
+        let depth = desc.csg.depth();
+        if depth > super::limits::MAX_CSG_DEPTH {
+            return Err(fail(format!(
+                "the CSG tree is {depth} levels deep, more than the {} glint accepts",
+                super::limits::MAX_CSG_DEPTH
+            )));
+        }
         // Meshes are looked up (and made solid) before resolving, which only reads them.
         for name in mesh_names(&desc.csg) {
             if solids.contains_key(&name) {

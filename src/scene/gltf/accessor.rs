@@ -5,6 +5,7 @@ use std::path::Path;
 
 use gltf::accessor::{DataType, Dimensions};
 
+use super::buffers::Buffers;
 use super::error::{AccessorError, BufferProblem, GlbError, GltfError, ViewError};
 
 /// Splits a binary glTF into its JSON chunk and BIN chunk, checking every length.
@@ -158,7 +159,7 @@ pub(super) fn view_bytes<'b>(
 /// Extents are checked first: a short buffer is an error, never a panic.
 pub(super) fn read_elements<T: Copy>(
     acc: &gltf::Accessor,
-    buffers: &[Vec<u8>],
+    buffers: &Buffers,
     conv: impl Fn(&[u8]) -> T,
 ) -> Result<Vec<T>, AccessorError> {
     let name = match acc.name() {
@@ -170,6 +171,7 @@ pub(super) fn read_elements<T: Copy>(
     if count > (1 << 31) || (acc.view().is_none() && count > (1 << 26)) {
         return Err(AccessorError::TooLarge { name, count });
     }
+    buffers.charge(&name, count, std::mem::size_of::<T>())?;
     // Allocated only once the extents are known to be inside the file's data.
     let mut out = match acc.view() {
         Some(view) => read_dense(acc, &view, buffers, &name, &conv)?,
@@ -303,7 +305,7 @@ pub(super) fn component(dt: DataType, b: &[u8], normalized: bool) -> f32 {
 /// Reads a float vector attribute of `N` components (any component type, normalised as declared).
 pub(super) fn read_vec<const N: usize>(
     acc: &gltf::Accessor,
-    buffers: &[Vec<u8>],
+    buffers: &Buffers,
     what: &str,
 ) -> Result<Vec<[f32; N]>, AccessorError> {
     let want = match N {
@@ -334,7 +336,7 @@ pub(super) fn read_vec<const N: usize>(
 /// Reads a float SCALAR accessor.
 pub(super) fn read_f32s(
     acc: &gltf::Accessor,
-    buffers: &[Vec<u8>],
+    buffers: &Buffers,
 ) -> Result<Vec<f32>, AccessorError> {
     read_elements(acc, buffers, |b| {
         f32::from_le_bytes([b[0], b[1], b[2], b[3]])
@@ -344,7 +346,7 @@ pub(super) fn read_f32s(
 /// Reads an index accessor (unsigned integer SCALAR).
 pub(super) fn read_indices(
     acc: &gltf::Accessor,
-    buffers: &[Vec<u8>],
+    buffers: &Buffers,
 ) -> Result<Vec<u32>, AccessorError> {
     if acc.dimensions() != Dimensions::Scalar {
         return Err(AccessorError::IndexNotScalar(acc.index()));

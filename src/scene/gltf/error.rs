@@ -71,6 +71,11 @@ pub enum GltfError {
         matrices: usize,
         joints: usize,
     },
+    #[error(
+        "{node}: EXT_mesh_gpu_instancing places {count} instances, more than the {} glint accepts",
+        crate::scene::limits::MAX_INSTANCES
+    )]
+    TooManyInstances { node: String, count: usize },
     #[error("EXT_mesh_gpu_instancing: {attribute} names accessor {index}, which does not exist")]
     InstancingAccessor { attribute: String, index: usize },
     #[error("EXT_mesh_gpu_instancing: {first} has {count} instances but {other} has {len}")]
@@ -166,6 +171,9 @@ pub enum ViewError {
 pub enum AccessorError {
     #[error("{name}: count {count} is too large")]
     TooLarge { name: String, count: usize },
+    /// The file reads more out of its buffers than they can reasonably hold (see `buffers.rs`).
+    #[error("{name}: reading {count} more elements exceeds what the file's buffers can hold (a file that reuses or invents data on this scale is refused)")]
+    Budget { name: String, count: usize },
     #[error("{name}: {source}")]
     View { name: String, source: ViewError },
     #[error("{name}: byteStride {stride} is smaller than the element size {elem}")]
@@ -244,16 +252,14 @@ pub enum MeshoptError {
 pub enum ImageError {
     #[error(transparent)]
     View(#[from] ViewError),
-    #[error("cannot decode image: {0}")]
-    Decode(image::ImageError),
+    #[error(transparent)]
+    Decode(#[from] crate::scene::decode::DecodeError),
     #[error("malformed URI")]
     MalformedUri,
     #[error("cannot read image file: {0}")]
     Io(std::io::Error),
     #[error("cannot decode image: {0}")]
     Source(gltf::Error),
-    #[error("decoded image is shorter than its size")]
-    Short,
     #[error("embedded in a buffer view without the mimeType the spec requires")]
     NoMimeType,
     #[error("neither a uri nor a buffer view")]

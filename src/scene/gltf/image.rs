@@ -9,11 +9,7 @@ use super::Loader;
 use crate::scene::{Texture, Wrap};
 
 /// Decoded image pixels, shared by the sRGB and linear variants of a texture.
-pub(super) struct Pixels {
-    width: usize,
-    height: usize,
-    rgba: Vec<[u8; 4]>,
-}
+pub(super) type Pixels = crate::scene::decode::Rgba8;
 
 impl Loader<'_> {
     /// The scene texture of glTF texture `index` read as sRGB or linear; None when its image failed.
@@ -41,7 +37,7 @@ impl Loader<'_> {
                 name,
                 width: p.width,
                 height: p.height,
-                pixels: p.rgba.clone(),
+                pixels: p.pixels.clone(),
                 srgb,
                 wrap_s: wrap(sampler.wrap_s()),
                 wrap_t: wrap(sampler.wrap_t()),
@@ -86,34 +82,27 @@ impl Loader<'_> {
     }
 
     fn decode_image(&self, image: &gltf::Image) -> Result<Pixels, ImageError> {
-        match image.source() {
-            gltf::image::Source::View { view, .. } => {
-                let bytes = view_bytes(&view, self.buffers)?;
-                let img = image::load_from_memory(bytes)
-                    .map_err(ImageError::Decode)?
-                    .to_rgba8();
-                Ok(Pixels {
-                    width: img.width() as usize,
-                    height: img.height() as usize,
-                    rgba: img.pixels().map(|p| p.0).collect(),
-                })
-            }
+        let file;
+        let bytes = match image.source() {
+            gltf::image::Source::View { view, .. } => view_bytes(&view, self.buffers)?,
             gltf::image::Source::Uri { uri, .. } => {
                 if !uri_decodes(uri) {
                     return Err(ImageError::MalformedUri);
                 }
-                let d = gltf::image::Data::from_source(image.source(), Some(self.base), &[])
-                    .map_err(|e| match e {
-                        gltf::Error::Io(e) => ImageError::Io(e),
-                        e => ImageError::Source(e),
-                    })?;
-                Ok(Pixels {
-                    width: d.width as usize,
-                    height: d.height as usize,
-                    rgba: to_rgba8(&d)?,
-                })
+                // The crate's URI reader (data URI or a file beside the glTF); the decoding is
+                // glint's, so that the pixel cap holds for every image.
+                file = gltf::buffer::Data::from_source(
+                    gltf::buffer::Source::Uri(uri),
+                    Some(self.base),
+                )
+                .map_err(|e| match e {
+                    gltf::Error::Io(e) => ImageError::Io(e),
+                    e => ImageError::Source(e),
+                })?;
+                &file.0[..]
             }
-        }
+        };
+        Ok(crate::scene::decode::decode_rgba8(bytes)?)
     }
 }
 
@@ -146,55 +135,6 @@ fn source_present(doc: &gltf::Document, i: usize) -> Result<(), ImageError> {
         (None, None) => Err(ImageError::NoSource),
         _ => Ok(()),
     }
-}
-
-/// Converts any decoded glTF image into RGBA8 (grey formats replicate into RGB).
-fn to_rgba8(img: &gltf::image::Data) -> Result<Vec<[u8; 4]>, ImageError> {
-    use gltf::image::Format::*;
-    let n = img.width as usize * img.height as usize;
-    let p = &img.pixels;
-    let (ch, bytes_per) = match img.format {
-        R8 => (1, 1),
-        R8G8 => (2, 1),
-        R8G8B8 => (3, 1),
-        R8G8B8A8 => (4, 1),
-        R16 => (1, 2),
-        R16G16 => (2, 2),
-        R16G16B16 => (3, 2),
-        R16G16B16A16 => (4, 2),
-        R32G32B32FLOAT => (3, 4),
-        R32G32B32A32FLOAT => (4, 4),
-    };
-    if p.len() < n * ch * bytes_per {
-        return Err(ImageError::Short);
-    }
-    let get = |i: usize| -> u8 {
-        match bytes_per {
-            1 => p[i],
-            2 => (u16::from_ne_bytes([p[2 * i], p[2 * i + 1]]) as u32 * 255 / 65535) as u8,
-            _ => {
-                let f = f32::from_ne_bytes([p[4 * i], p[4 * i + 1], p[4 * i + 2], p[4 * i + 3]]);
-                (f.clamp(0.0, 1.0) * 255.0 + 0.5) as u8
-            }
-        }
-    };
-    Ok((0..n)
-        .map(|k| {
-            let i = k * ch;
-            match ch {
-                1 => {
-                    let g = get(i);
-                    [g, g, g, 255]
-                }
-                2 => {
-                    let g = get(i);
-                    [g, g, g, get(i + 1)]
-                }
-                3 => [get(i), get(i + 1), get(i + 2), 255],
-                _ => [get(i), get(i + 1), get(i + 2), get(i + 3)],
-            }
-        })
-        .collect())
 }
 
 fn wrap(w: gltf::texture::WrappingMode) -> Wrap {

@@ -8,6 +8,7 @@
 
 mod accessor;
 mod animation;
+mod buffers;
 pub mod error;
 mod image;
 mod instancing;
@@ -15,7 +16,6 @@ mod light;
 mod material;
 mod mesh;
 pub mod meshopt;
-mod quiet_panic;
 #[cfg(test)]
 mod tests;
 
@@ -60,7 +60,15 @@ type SkinAttrs = (Vec<[u16; 4]>, Vec<Vec4>);
 /// Loads a .gltf or .glb file keeping its animation number `animation` (when it has animations).
 /// Never panics on malformed input: every problem is a `LoadError`.
 pub fn load(path: &Path, animation: usize) -> Result<Scene, LoadError> {
-    match quiet_panic::catch(|| load_inner(path, animation)) {
+    let bytes =
+        std::fs::read(path).map_err(|e| LoadError::new(path, GltfError::Read(e).to_string()))?;
+    load_bytes(path, &bytes, animation)
+}
+
+/// Loads a .gltf or .glb file whose bytes are in hand; `path` names it in errors, and relative URIs
+/// (external buffers and images) resolve beside it.
+pub fn load_bytes(path: &Path, bytes: &[u8], animation: usize) -> Result<Scene, LoadError> {
+    match super::quiet_panic::catch(|| load_inner(path, bytes, animation)) {
         Some(r) => r.map_err(|e| LoadError::new(path, e.to_string())),
         None => Err(LoadError::new(
             path,
@@ -69,18 +77,18 @@ pub fn load(path: &Path, animation: usize) -> Result<Scene, LoadError> {
     }
 }
 
-fn load_inner(path: &Path, animation: usize) -> Result<Scene, GltfError> {
-    let bytes = std::fs::read(path).map_err(GltfError::Read)?;
+fn load_inner(path: &Path, bytes: &[u8], animation: usize) -> Result<Scene, GltfError> {
     let base = path.parent().unwrap_or_else(|| Path::new("."));
     let (json_bytes, blob) = if bytes.starts_with(b"glTF") {
-        accessor::split_glb(&bytes)?
+        accessor::split_glb(bytes)?
     } else {
-        let json = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&bytes);
+        let json = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
         (json, None)
     };
     let doc = document(json_bytes)?;
     let mut buffers = accessor::read_buffers(&doc, base, blob)?;
     let doc = meshopt::decode_views(doc, &mut buffers)?;
+    let buffers = buffers::Buffers::new(buffers);
     Loader {
         doc: &doc,
         buffers: &buffers,
@@ -139,7 +147,7 @@ fn document(json: &[u8]) -> Result<gltf::Document, GltfError> {
 
 struct Loader<'a> {
     doc: &'a gltf::Document,
-    buffers: &'a [Vec<u8>],
+    buffers: &'a buffers::Buffers,
     base: &'a Path,
     scene: Scene,
     /// (mesh, primitive) -> index in `scene.meshes`, or None when the primitive was skipped.
@@ -353,6 +361,16 @@ impl Loader<'_> {
         world: Mat4,
         locals: &[Mat4],
     ) -> Result<(), GltfError> {
+        let placed = locals
+            .len()
+            .saturating_mul(mesh.primitives().len())
+            .saturating_add(self.scene.instances.len());
+        if placed > super::limits::MAX_INSTANCES {
+            return Err(GltfError::TooManyInstances {
+                node: node_label(node),
+                count: placed,
+            });
+        }
         let worlds: Vec<Mat4> = locals.iter().map(|l| world * *l).collect();
         let bad = worlds
             .iter()

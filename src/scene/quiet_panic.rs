@@ -1,5 +1,5 @@
-//! Catching a panic of the glTF reader without its message or backtrace reaching stderr: the caller
-//! reports one clean error instead.
+//! Catching a panic of a file reader (glTF, OBJ) without its message or backtrace reaching stderr:
+//! the caller reports one clean error instead.
 //!
 //! The panic hook is process-wide, so it is replaced once by one that stays silent only on a thread
 //! inside `catch` and hands every other panic to the hook it replaced.
@@ -15,7 +15,7 @@ thread_local! {
 static INSTALL: Once = Once::new();
 
 /// Runs `f`; a panic inside it prints nothing and gives None.
-pub(super) fn catch<T>(f: impl FnOnce() -> T) -> Option<T> {
+pub(crate) fn catch<T>(f: impl FnOnce() -> T) -> Option<T> {
     INSTALL.call_once(|| {
         let previous = panic::take_hook();
         panic::set_hook(Box::new(move |info| {

@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# Fills fuzz/corpus/<target>/ with seed inputs: the small files of assets/ and /work/shared/assets
+# (or $SHARED), OBJs with their MTL appended as the obj_load target expects, tiny generated images.
+# Usage: scripts/fuzz-seeds.sh   (idempotent; the corpora are not in git)
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+shared=${SHARED:-/work/shared/assets}
+c=$root/fuzz/corpus
+max=65536   # seeds over 64 KiB only slow the fuzzer down (and libFuzzer's max_len follows the largest)
+mkdir -p "$c"/{gltf_load,glb_load,obj_load,scene_toml,envmap_load,texture_decode,meshopt_decode}
+
+small() { find "$@" -type f -size -${max}c 2>/dev/null || true; }
+for f in $(small "$root/assets" "$shared" -name '*.gltf'); do cp "$f" "$c/gltf_load/$(basename "$f")"; done
+for f in $(small "$root/assets" "$shared" -name '*.glb'); do cp "$f" "$c/glb_load/$(basename "$f")"; done
+for f in $(small "$root/assets" "$shared" -name '*.obj'); do
+    out="$c/obj_load/$(basename "$f")"
+    mtl=$(sed -n 's/^mtllib[[:space:]]\+//p' "$f" | head -1 | tr -d '\r')
+    sed 's/^mtllib .*/mtllib m.mtl/' "$f" > "$out"
+    if [ -n "$mtl" ] && [ -f "$(dirname "$f")/$mtl" ]; then
+        printf '\n#MTL\n' >> "$out"
+        cat "$(dirname "$f")/$mtl" >> "$out"
+    fi
+done
+# Hand-written OBJs: faces with texture and normal indices, negative indices, groups, materials.
+printf 'mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvn 0 0 1\no quad\nusemtl red\nf 1/1/1 2/2/1 3/3/1 4/1/1\ng back\nusemtl glass\nf -1//1 -2//1 -3//1\n\n#MTL\nnewmtl red\nKd 1 0 0\nKs 0.5 0.5 0.5\nNs 50\nmap_Kd -bm 1 tex.png\nnewmtl glass\nillum 7\nNi 1.5\nTf 0.9 1 0.9\nd 0.5\nKe 1 1 1\n' > "$c/obj_load/quad-mtl.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\nl 1 2\np 3\n' > "$c/obj_load/tetra.obj"
+cp "$root"/assets/scenes/*.toml "$c/scene_toml/"
+for f in $(small "$root/assets" "$shared" \( -name '*.png' -o -name '*.jpg' -o -name '*.jpeg' -o -name '*.webp' \)); do
+    cp "$f" "$c/texture_decode/$(basename "$f")"
+done
+for f in $(small "$root/assets" "$shared" \( -name '*.hdr' -o -name '*.exr' \)); do cp "$f" "$c/envmap_load/$(basename "$f")"; done
+# Tiny generated images in every format the decoders read, and environment maps of both kinds.
+python3 - "$c" <<'PY'
+import io, struct, sys, zlib
+c = sys.argv[1]
+try:
+    from PIL import Image
+    im = Image.new("RGBA", (5, 3))
+    im.putdata([(i * 40 % 256, i * 90 % 256, i * 17 % 256, 255 - i) for i in range(15)])
+    for fmt, ext, mode in [("PNG", "png", "RGBA"), ("PNG", "grey16.png", "I;16"), ("JPEG", "jpg", "RGB"),
+                           ("WEBP", "webp", "RGBA"), ("GIF", "gif", "P")]:
+        im.convert(mode).save(f"{c}/texture_decode/gen.{ext}", fmt)
+    im.convert("RGB").save(f"{c}/texture_decode/gen-progressive.jpg", "JPEG", progressive=True)
+    im.save(f"{c}/texture_decode/gen-lossless.webp", "WEBP", lossless=True)
+except ImportError:
+    pass
+# Radiance HDR, flat (uncompressed) RGBE scanlines.
+w, h = 8, 4
+rows = b"".join(bytes([(x * 30) % 256, (y * 60) % 256, 128, 128]) for y in range(h) for x in range(w))
+open(f"{c}/envmap_load/gen.hdr", "wb").write(b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y %d +X %d\n" % (h, w) + rows)
+PY
+# An EXR written by glint itself (the film writer), when a release build is there.
+if [ -x "$root/target/release/glint" ]; then
+    "$root/target/release/glint" render "$root/assets/dequantized/AnimatedMorphCube.gltf" -o "$c/envmap_load/gen.exr" \
+        --width 8 --height 4 --spp 1 --backend bvh --quiet || true
+fi
+# meshopt: a few streams of each mode cut from the meshopt assets' BIN chunks (any bytes do).
+for f in "$root"/assets/meshopt/*.glb; do
+    for mode in 0 1 2; do
+        { printf "\\x$(printf %02x $mode)\\x00\\x0b\\x40\\x00"; head -c 2048 "$f" | tail -c 1500; } > "$c/meshopt_decode/$(basename "$f" .glb)-$mode"
+    done
+done
+# What was found before (and fixed) seeds its target too.
+for d in "$root"/fuzz/regressions/*/; do cp "$d"* "$c/$(basename "$d")/" 2>/dev/null || true; done
+for t in "$c"/*; do echo "$(basename "$t"): $(ls "$t" | wc -l) seeds, $(du -sk "$t" | cut -f1) KiB"; done
