@@ -132,7 +132,11 @@ fn sphere_normals_are_unit_and_radial_and_positions_lie_on_it() {
         assert!((n.length() - 1.0).abs() < 1e-5, "|n| = {}", n.length());
         // Facets of a level-4 icosphere lie within 0.1% of the unit sphere, and the mean of the
         // points under the filter's footprint (3 pixels wide) a little inside the curved surface.
-        assert!(p.length() < 1.0 && p.length() > 0.995, "|p| = {}", p.length());
+        assert!(
+            p.length() < 1.0 && p.length() > 0.995,
+            "|p| = {}",
+            p.length()
+        );
         // A pixel averages normals over its footprint: within a degree of the mean position's.
         assert!(n.dot(p.normalize()) > 0.9998, "n {n} at p {p}");
         assert!(n.dot(eye - p) > 0.0, "the normal faces the camera");
