@@ -1,51 +1,126 @@
-//! Build script: finds or fetches the Embree 4 shared library and tells rustc how to link and load it.
-//! Only active with the `embree` feature; a `--no-default-features` build needs nothing from here.
+//! Build script: finds or fetches the Embree 4 and Open Image Denoise 2 shared libraries and tells
+//! rustc how to link and load them. Each is only wanted by its cargo feature (`embree`, `denoise`).
 //!
-//! Order of preference:
-//!  * `EMBREE_DIR` — any directory holding `libembree4.so` (a real Embree 4 install, or an offline copy);
-//!  * otherwise Embree 4.4.0 from the PyPI wheel `embreex==4.4.0.post1`, downloaded once with
-//!    `python3 -m pip download` into `<target-dir>/embree4/` (override with `EMBREE_CACHE_DIR`).
+//! Order of preference, for each library:
+//!  * `EMBREE_DIR` (a directory holding `libembree4.so`) / `OIDN_DIR` (one holding
+//!    `libOpenImageDenoise.so`): a real install, or an offline copy;
+//!  * otherwise the library from a PyPI wheel, downloaded once with `python3 -m pip download` into
+//!    `<target-dir>/embree4/` (`embreex==4.4.0.post1`, override with `EMBREE_CACHE_DIR`) or
+//!    `<target-dir>/oidn2/` (`pyoidn==2.5.1.0`, override with `OIDN_CACHE_DIR`).
 //!
-//! The library directory goes into an rpath, so `cargo run`, `cargo test` and the built binary load it
-//! with no `LD_LIBRARY_PATH`. See ../shared/EMBREE.md, section 2.
+//! The library directories go into an rpath, so `cargo run`, `cargo test` and the built binary load
+//! them with no `LD_LIBRARY_PATH`. See ../shared/EMBREE.md, section 2, and ../shared/OIDN.md.
 use std::env;
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const WHEEL: &str = "embreex==4.4.0.post1";
-const SUBDIR: &str = "embree-4.4.0-embreex-4.4.0.post1";
+/// One shared library glint links, fetched from a wheel when its `*_DIR` variable is unset.
+struct Lib {
+    feature: &'static str,
+    dir_var: &'static str,
+    cache_var: &'static str,
+    cache_name: &'static str,
+    /// The `-l` name: `lib{link}.so` must be in the directory.
+    link: &'static str,
+    wheel: &'static str,
+    platform: &'static str,
+    /// Folder under the cache for this wheel's files.
+    subdir: &'static str,
+    /// Python: unpack what is needed from the wheel (argv[1]) into the folder argv[2].
+    unpack: &'static str,
+}
+
+const EMBREE: Lib = Lib {
+    feature: "EMBREE",
+    dir_var: "EMBREE_DIR",
+    cache_var: "EMBREE_CACHE_DIR",
+    cache_name: "embree4",
+    link: "embree4",
+    wheel: "embreex==4.4.0.post1",
+    platform: "manylinux_2_28_x86_64",
+    subdir: "embree-4.4.0-embreex-4.4.0.post1",
+    // Only <pkg>.libs/*.so*; `-lembree4` needs libembree4.so, the wheel has libembree4-<hash>.so.4
+    // (its SONAME).
+    unpack: r#"
+import sys, zipfile, os
+with zipfile.ZipFile(sys.argv[1]) as z:
+    for n in z.namelist():
+        if '.libs/' in n and '.so' in n:
+            with open(os.path.join(sys.argv[2], os.path.basename(n)), 'wb') as f:
+                f.write(z.read(n))
+real = [n for n in os.listdir(sys.argv[2]) if n.startswith('libembree4-') and n.endswith('.so.4')]
+os.symlink(real[0], os.path.join(sys.argv[2], 'libembree4.so'))
+"#,
+};
+
+const OIDN: Lib = Lib {
+    feature: "DENOISE",
+    dir_var: "OIDN_DIR",
+    cache_var: "OIDN_CACHE_DIR",
+    cache_name: "oidn2",
+    link: "OpenImageDenoise",
+    wheel: "pyoidn==2.5.1.0",
+    platform: "manylinux2014_x86_64",
+    // The folder must be named `lib`: the libraries' RPATH is $ORIGIN/../lib, and the API library
+    // loads the core and the CPU device through it.
+    subdir: "oidn-2.5.1-pyoidn-2.5.1.0/lib",
+    // The four files a CPU build needs (the GPU devices, SYCL and Unified Runtime are left out).
+    unpack: r#"
+import sys, zipfile, os
+d = sys.argv[2]
+with zipfile.ZipFile(sys.argv[1]) as z:
+    for n in ['libOpenImageDenoise.so.2.5.1', 'libOpenImageDenoise_core.so.2.5.1',
+              'libOpenImageDenoise_device_cpu.so.2.5.1', 'libtbb.so.12']:
+        with open(os.path.join(d, n), 'wb') as f:
+            f.write(z.read('pyoidn/oidn/lib/' + n))
+for alias in ['libOpenImageDenoise.so.2', 'libOpenImageDenoise.so']:
+    os.symlink('libOpenImageDenoise.so.2.5.1', os.path.join(d, alias))
+"#,
+};
 
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
-    println!("cargo:rerun-if-env-changed=EMBREE_DIR");
-    println!("cargo:rerun-if-env-changed=EMBREE_CACHE_DIR");
-    if env::var_os("CARGO_FEATURE_EMBREE").is_none() {
-        return;
+    for lib in [EMBREE, OIDN] {
+        println!("cargo:rerun-if-env-changed={}", lib.dir_var);
+        println!("cargo:rerun-if-env-changed={}", lib.cache_var);
+        if env::var_os(format!("CARGO_FEATURE_{}", lib.feature)).is_some() {
+            let dir = find(&lib);
+            println!(
+                "cargo:rustc-env=GLINT_{}_LIB_DIR={}",
+                lib.feature,
+                dir.display()
+            );
+        }
     }
-    let dir = match env::var_os("EMBREE_DIR") {
+}
+
+/// The library's directory (from its variable or the wheel), with link and rpath arguments printed.
+fn find(lib: &Lib) -> PathBuf {
+    let dir = match env::var_os(lib.dir_var) {
         Some(d) => PathBuf::from(d),
-        None => fetch_wheel(),
+        None => fetch_wheel(lib),
     };
-    if !dir.join("libembree4.so").exists() {
+    let so = dir.join(format!("lib{}.so", lib.link));
+    if !so.exists() {
         panic!(
-            "{}: no libembree4.so there (set EMBREE_DIR to a directory holding libembree4.so)",
-            dir.display()
+            "{}: no lib{}.so there (set {} to a directory holding lib{}.so)",
+            dir.display(),
+            lib.link,
+            lib.dir_var,
+            lib.link
         );
     }
     // Re-run (and re-fetch) if somebody deletes the cached library.
-    println!(
-        "cargo:rerun-if-changed={}",
-        dir.join("libembree4.so").display()
-    );
+    println!("cargo:rerun-if-changed={}", so.display());
     println!("cargo:rustc-link-search=native={}", dir.display());
     // Reaches the bins, tests, examples and benches of this package: keep glint one package.
     println!("cargo:rustc-link-arg=-Wl,-rpath,{}", dir.display());
-    println!("cargo:rustc-env=GLINT_EMBREE_LIB_DIR={}", dir.display());
+    dir
 }
 
-fn cache_root() -> PathBuf {
-    if let Some(d) = env::var_os("EMBREE_CACHE_DIR") {
+fn cache_root(lib: &Lib) -> PathBuf {
+    if let Some(d) = env::var_os(lib.cache_var) {
         return PathBuf::from(d);
     }
     // OUT_DIR = <target-dir>/[<triple>/]<profile>/build/<pkg>-<hash>/out
@@ -53,77 +128,60 @@ fn cache_root() -> PathBuf {
     out.ancestors()
         .nth(4)
         .expect("OUT_DIR is deep enough")
-        .join("embree4")
+        .join(lib.cache_name)
 }
 
-fn fetch_wheel() -> PathBuf {
-    let root = cache_root();
-    let dest = root.join(SUBDIR);
-    if dest.join("libembree4.so").exists() {
+fn fetch_wheel(lib: &Lib) -> PathBuf {
+    let root = cache_root(lib);
+    let dest = root.join(lib.subdir);
+    let so = format!("lib{}.so", lib.link);
+    if dest.join(&so).exists() {
         return dest;
     }
-    fs::create_dir_all(&root).expect("create the Embree cache directory");
-    let tmp = root.join(format!(".tmp-{}", std::process::id()));
+    let hint = format!("set {} to a directory with {so}", lib.dir_var);
+    let parent = dest.parent().expect("subdir has a parent");
+    fs::create_dir_all(parent).unwrap_or_else(|e| panic!("create {}: {e}", parent.display()));
+    let tmp = parent.join(format!(".tmp-{}", std::process::id()));
     let _ = fs::remove_dir_all(&tmp);
     fs::create_dir_all(&tmp).expect("create a temporary directory");
     let python = env::var("PYTHON").unwrap_or_else(|_| "python3".into());
     // Pin platform and ABI so the file fetched does not depend on the local Python.
     let status = Command::new(&python)
-        .args([
-            "-m",
-            "pip",
-            "download",
-            "--no-deps",
-            "--only-binary=:all:",
-            "--platform",
-            "manylinux_2_28_x86_64",
-            "--python-version",
-            "3.11",
-            "--implementation",
-            "cp",
-            "--abi",
-            "cp311",
-            "--disable-pip-version-check",
-            "-q",
-            "-d",
-        ])
+        .args(["-m", "pip", "download", "--no-deps", "--only-binary=:all:"])
+        .args(["--platform", lib.platform, "--python-version", "3.11"])
+        .args(["--implementation", "cp", "--abi", "cp311"])
+        .args(["--disable-pip-version-check", "-q", "-d"])
         .arg(&tmp)
-        .arg(WHEEL)
+        .arg(lib.wheel)
         .status()
-        .unwrap_or_else(|e| panic!("cannot run {python}: {e}; set EMBREE_DIR"));
-    if !status.success() {
+        .unwrap_or_else(|e| panic!("cannot run {python}: {e}; {hint}"));
+    let wheel = fs::read_dir(&tmp)
+        .ok()
+        .and_then(|d| d.filter_map(|e| e.ok()).map(|e| e.path()).next());
+    let (true, Some(wheel)) = (status.success(), wheel) else {
         let _ = fs::remove_dir_all(&tmp);
-        panic!("pip download {WHEEL} failed (offline?); set EMBREE_DIR to a directory with libembree4.so");
-    }
-    // Unpack only <pkg>.libs/*.so* with Python's zipfile, so no `unzip` is needed.
-    let script = r#"
-import sys, zipfile, glob, os
-whl = glob.glob(os.path.join(sys.argv[1], '*.whl'))[0]
-with zipfile.ZipFile(whl) as z:
-    for n in z.namelist():
-        if '.libs/' in n and '.so' in n:
-            with open(os.path.join(sys.argv[1], os.path.basename(n)), 'wb') as f:
-                f.write(z.read(n))
-os.remove(whl)
-"#;
+        panic!("pip download {} failed (offline?); {hint}", lib.wheel);
+    };
+    // Unpack with Python's zipfile, so no `unzip` is needed.
+    let files = tmp.join("files");
+    fs::create_dir_all(&files).expect("create the unpack directory");
     let status = Command::new(&python)
         .arg("-c")
-        .arg(script)
-        .arg(&tmp)
+        .arg(lib.unpack)
+        .arg(&wheel)
+        .arg(&files)
         .status()
         .expect("run python to unpack the wheel");
-    assert!(status.success(), "unpacking the wheel failed");
-    // `-lembree4` needs libembree4.so; the wheel has libembree4-<hash>.so.4 (its SONAME).
-    let real = fs::read_dir(&tmp)
-        .expect("read the unpacked wheel")
-        .filter_map(|e| e.ok()?.file_name().into_string().ok())
-        .find(|n| n.starts_with("libembree4-") && n.ends_with(".so.4"))
-        .expect("no libembree4-*.so.4 in the wheel");
-    std::os::unix::fs::symlink(&real, tmp.join("libembree4.so")).expect("symlink libembree4.so");
+    assert!(status.success(), "unpacking {} failed; {hint}", lib.wheel);
     // Atomic publish; a concurrent build may have won the race, which is fine.
-    if fs::rename(&tmp, &dest).is_err() {
-        let _ = fs::remove_dir_all(&tmp);
+    if fs::rename(&files, &dest).is_err() {
+        assert!(
+            dest.join(&so).exists(),
+            "{}: could not publish; {hint}",
+            dest.display()
+        );
     }
-    assert!(Path::new(&dest).join("libembree4.so").exists());
+    let _ = fs::remove_dir_all(&tmp);
+    assert!(Path::new(&dest).join(&so).exists());
     dest
 }

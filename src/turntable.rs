@@ -12,6 +12,8 @@ use indicatif::ProgressBar;
 use thiserror::Error;
 
 use crate::accel::Accel;
+use crate::film::aov::FeatureImages;
+use crate::film::denoise::{DenoiseError, DenoiseQuality, Denoiser};
 use crate::film::{self, FilmError, Format, Image};
 use crate::geometry::mix64;
 use crate::geometry::Aabb;
@@ -31,6 +33,8 @@ const FOLDER_DIGITS: usize = 4;
 pub enum TurntableError {
     #[error(transparent)]
     Film(#[from] FilmError),
+    #[error(transparent)]
+    Denoise(#[from] DenoiseError),
     #[error("{}: --format {format} disagrees with the pattern's extension", path.display())]
     FormatDisagrees { path: PathBuf, format: &'static str },
     #[error("{}: the frame pattern must hold one run of # (e.g. helmet_####.png)", .0.display())]
@@ -309,6 +313,54 @@ pub struct Turntable {
     pub view: film::ViewTransform,
     /// Render frames whose file already exists again.
     pub overwrite: bool,
+    /// Denoise each frame (guided by its albedo and normal images) with this quality.
+    pub denoise: Option<DenoiseQuality>,
+}
+
+/// One rendered frame: the image, the guides when asked for, and the rays it took.
+#[derive(Clone, Debug, Default)]
+pub struct FrameRender {
+    pub image: Image,
+    pub features: Option<FeatureImages>,
+    pub rays: u64,
+}
+
+impl FrameRender {
+    /// Adds sub-frame `k` of `n`, weighted by `w` (a single sub-frame is taken as it is).
+    fn add(
+        &mut self,
+        image: Image,
+        features: Option<FeatureImages>,
+        rays: u64,
+        (k, n, w): (usize, usize, f32),
+    ) {
+        self.rays += rays;
+        if n == 1 {
+            (self.image, self.features) = (image, features);
+            return;
+        }
+        if k == 0 {
+            self.image = image;
+            self.image.pixels.iter_mut().for_each(|p| *p *= w);
+            self.features = features.map(|mut f| {
+                f.albedo.iter_mut().for_each(|a| *a *= w);
+                f.normal.iter_mut().for_each(|n| *n *= w);
+                f
+            });
+            return;
+        }
+        for (a, p) in self.image.pixels.iter_mut().zip(&image.pixels) {
+            *a += *p * w;
+        }
+        if let (Some(sum), Some(f)) = (&mut self.features, &features) {
+            for (a, b) in sum.albedo.iter_mut().zip(&f.albedo) {
+                *a += *b * w;
+            }
+            for (a, b) in sum.normal.iter_mut().zip(&f.normal) {
+                *a += *b * w;
+            }
+        }
+    }
 }
 
 /// What a sequence run did, and what it cost.
@@ -397,18 +449,18 @@ impl Turntable {
     }
 
     /// Renders one frame into an image. `scene` must be the one `accel` was built over, or a copy of it
-    /// differing only in `lights` (those are overwritten when the lights move).
+    /// differing only in `lights` (those are overwritten when the lights move). With `guides`, also
+    /// the albedo and normal images the denoiser needs, averaged over sub-frames as the image is.
     pub fn render_frame(
         &self,
         scene: &mut SceneForFrames,
         accel: &dyn Accel,
         base_lights: &[Light],
-        frame: u32,
-    ) -> (Image, u64) {
+        (frame, guides): (u32, bool),
+    ) -> FrameRender {
         let seed = frame_seed(self.settings.seed, frame);
         let subframes = self.subframes();
-        let mut sum: Option<Image> = None;
-        let mut rays = 0;
+        let mut sum = FrameRender::default();
         for (k, &(dt, spp)) in subframes.iter().enumerate() {
             let (camera, lights) = self.view_at(base_lights, frame as f32 + dt);
             let settings = RenderSettings {
@@ -418,29 +470,21 @@ impl Turntable {
                 } else {
                     mix64(seed ^ (k as u64 + 1))
                 },
+                feature_images: guides,
                 ..self.settings.clone()
             };
             let scene = scene.with_lights(lights);
-            let (image, stats) =
-                render::render(scene, accel, &camera, &settings, &ProgressBar::hidden());
-            rays += stats.rays;
+            let out = render::render_full(scene, accel, &camera, &settings, &ProgressBar::hidden());
             // Weighted by each sub-frame's share of the samples: the mean over all samples.
             let w = spp as f32 / self.settings.spp.max(1) as f32;
-            match &mut sum {
-                None if subframes.len() == 1 => sum = Some(image),
-                None => {
-                    let mut img = image;
-                    img.pixels.iter_mut().for_each(|p| *p *= w);
-                    sum = Some(img);
-                }
-                Some(acc) => {
-                    for (a, p) in acc.pixels.iter_mut().zip(&image.pixels) {
-                        *a += *p * w;
-                    }
-                }
-            }
+            sum.add(
+                out.image,
+                out.features,
+                out.stats.rays,
+                (k, subframes.len(), w),
+            );
         }
-        (sum.expect("at least one sub-frame"), rays)
+        sum
     }
 
     /// Frames of `frames` that still need rendering (all of them with `overwrite`).
@@ -478,6 +522,11 @@ impl Turntable {
         progress.set_length(todo.len() as u64);
         progress.set_message(format!("{} skipped", report.skipped.len()));
         let base_lights = scene.lights.clone();
+        // One device for the whole sequence (creating one loads the library's kernels).
+        let d = match self.denoise {
+            Some(q) if !todo.is_empty() => Some(Denoiser::new(0, q)?),
+            _ => None,
+        };
         let t = Instant::now();
         let mut frame_scene = if self.lights_move() && !todo.is_empty() {
             SceneForFrames::Owned(Box::new(Scene::clone(scene)))
@@ -497,8 +546,12 @@ impl Turntable {
                 continue;
             }
             let t = Instant::now();
-            let (image, rays) = self.render_frame(&mut frame_scene, accel, &base_lights, f);
-            film::write_with(&image, &path, &self.display())?;
+            let mut r = self.render_frame(&mut frame_scene, accel, &base_lights, (f, d.is_some()));
+            if let Some(d) = &d {
+                r.image = d.denoise(&r.image, r.features.as_ref().map(|f| f.guides()))?;
+            }
+            let rays = r.rays;
+            film::write_with(&r.image, &path, &self.display())?;
             report.frame_seconds.push(t.elapsed().as_secs_f64());
             report.rays += rays;
             report.rendered.push(f);
@@ -751,6 +804,7 @@ mod tests {
             exposure: 0.0,
             view: Default::default(),
             overwrite: false,
+            denoise: None,
         };
         let base = vec![Light::Point {
             position: Vec3::new(1.0, 5.0, 8.0),
@@ -790,6 +844,7 @@ mod tests {
             exposure: 0.0,
             view: Default::default(),
             overwrite: false,
+            denoise: None,
         };
         let s = tt.subframes();
         assert_eq!(s.len() as u32, MAX_SUBFRAMES);

@@ -185,12 +185,20 @@ fn cli_writes_the_spp_map_and_honours_a_time_budget() {
     glint_render_demo(&dir.path().join("a.exr"), &args);
     let spp = glint::film::read_exr(&map).unwrap();
     assert!(spp.pixels.iter().all(|p| p.x >= 4.0 && p.x <= 32.0));
-    // `--aov spp` puts the same map beside the output.
+    // `--aov spp` puts the same counts into the output's `spp.count` channel.
     let mut args = adaptive.clone();
     args.extend(["--aov", "spp"]);
     glint_render_demo(&dir.path().join("b.exr"), &args);
-    let beside = glint::film::read_exr(&dir.path().join("b.spp.exr")).unwrap();
-    assert_eq!(beside.pixels, spp.pixels);
+    let counts = glint::film::layers::read_channel(&dir.path().join("b.exr"), "spp.count")
+        .unwrap()
+        .unwrap();
+    let want: Vec<f32> = spp.pixels.iter().map(|p| p.x).collect();
+    assert_eq!(counts, want);
+    // ... and beside a PNG output, as `.spp.png`.
+    let mut args = adaptive.clone();
+    args.extend(["--aov", "spp"]);
+    glint_render_demo(&dir.path().join("c.png"), &args);
+    assert!(dir.path().join("c.spp.png").is_file());
     let png = dir.path().join("t.png");
     glint_render_demo(
         &png,

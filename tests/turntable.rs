@@ -65,6 +65,7 @@ fn setup(scene: Scene, motion: Motion, lights: LightMode, shutter: f32) -> Setup
         exposure: 0.0,
         view: Default::default(),
         overwrite: false,
+        denoise: None,
     };
     if !defaults::has_own_lights(&scene) {
         scene

@@ -13,6 +13,7 @@ use std::path::{Path, PathBuf};
 use indicatif::ProgressBar;
 
 use super::error::{BenchError, Result};
+use crate::film::denoise::{DenoiseQuality, Denoiser};
 use crate::film::filter::FilterKind;
 use crate::film::{self, Image};
 use crate::render::job::{Basics, JobOptions, Overrides, RenderJob};
@@ -40,6 +41,9 @@ pub struct ConvergenceConfig {
     /// Fraction of pixels with the largest errors left out of the trimmed metrics (fireflies, in a
     /// run or in the reference, otherwise dominate a mean of squares).
     pub trim: f64,
+    /// Also the uniform Sobol ladder denoised (guided by albedo and normal), at this quality; a run's
+    /// time includes the denoising.
+    pub denoise: Option<DenoiseQuality>,
 }
 
 impl Default for ConvergenceConfig {
@@ -66,6 +70,7 @@ impl Default for ConvergenceConfig {
             corner_targets: vec![0.8, 0.4, 0.2, 0.1, 0.05],
             corner_max_spp: 289,
             trim: 0.001,
+            denoise: None,
         }
     }
 }
@@ -79,6 +84,8 @@ pub enum Mode {
     AdaptiveVariance,
     /// Sobol, corner subdivision (`AdaptiveMode::Corners`).
     AdaptiveCorners,
+    /// Uniform Sobol, then denoised.
+    Denoised,
 }
 
 impl fmt::Display for Mode {
@@ -87,6 +94,7 @@ impl fmt::Display for Mode {
             Mode::Uniform(k) => f.pad(&k.to_string()),
             Mode::AdaptiveVariance => f.pad("adaptive-variance"),
             Mode::AdaptiveCorners => f.pad("adaptive-corners"),
+            Mode::Denoised => f.pad("sobol+denoise"),
         }
     }
 }
@@ -171,7 +179,10 @@ pub fn run(input: &Path, out_dir: &Path, cfg: &ConvergenceConfig, verbose: bool)
         trim: cfg.trim,
         verbose,
     };
-    let runs = ladder.run_all(cfg);
+    let mut runs = ladder.run_all(cfg);
+    if let Some(q) = cfg.denoise {
+        runs.extend(ladder.run_denoised(&Denoiser::new(0, q)?, &cfg.ladder)?);
+    }
     let summary = summarise(&runs);
     let report = Report {
         scene: input.display().to_string(),
@@ -345,17 +356,47 @@ impl Ladder<'_> {
         runs
     }
 
+    /// The uniform Sobol ladder again, each image denoised with its albedo and normal.
+    fn run_denoised(&self, d: &Denoiser, ladder: &[u32]) -> Result<Vec<Run>> {
+        let mut runs = Vec::new();
+        for &spp in ladder {
+            let s = RenderSettings {
+                spp,
+                sampler: SamplerKind::Sobol,
+                feature_images: true,
+                ..self.job.settings.clone()
+            };
+            let out = self.job.render_with(&s, &self.hidden);
+            let t = std::time::Instant::now();
+            let guides = out.features.as_ref().map(|f| f.guides());
+            let image = d.denoise(&out.image, guides)?;
+            let seconds = out.stats.seconds + t.elapsed().as_secs_f64();
+            runs.push(self.score(
+                Mode::Denoised,
+                spp as f64,
+                (out.mean_spp(), seconds),
+                &image,
+            ));
+        }
+        Ok(runs)
+    }
+
     fn measure(&self, mode: Mode, param: f64, s: &RenderSettings) -> Run {
         let out = self.job.render_with(s, &self.hidden);
+        self.score(mode, param, (out.mean_spp(), out.stats.seconds), &out.image)
+    }
+
+    /// A run's errors against the reference (`cost`: its mean spp and seconds).
+    fn score(&self, mode: Mode, param: f64, cost: (f64, f64), image: &Image) -> Run {
         let reference = &self.reference.image;
-        let (abs, rel) = self.reference.errors(&out.image);
+        let (abs, rel) = self.reference.errors(image);
         let run = Run {
             mode,
             param,
-            mean_spp: out.mean_spp(),
-            seconds: out.stats.seconds,
-            rmse: out.image.rmse(reference),
-            rel_mse: out.image.rel_mse(reference),
+            mean_spp: cost.0,
+            seconds: cost.1,
+            rmse: image.rmse(reference),
+            rel_mse: image.rel_mse(reference),
             rmse_trim: trimmed_mean(abs, self.trim).max(1e-12).sqrt(),
             rel_mse_trim: trimmed_mean(rel, self.trim).max(1e-12),
         };
@@ -600,7 +641,53 @@ impl Report {
             }
             s.push('\n');
         }
+        if let Some(c) = self.denoise_comparison(16, 128) {
+            s.push_str(&c);
+        }
         s
+    }
+
+    /// The denoised `few`-spp image against raw uniform Sobol at `many` spp (relMSE, raw and
+    /// trimmed), and the spp at which raw Sobol reaches the denoised image's relMSE (interpolated
+    /// in log-log, or extrapolated along its fitted slope).
+    pub fn denoise_comparison(&self, few: u32, many: u32) -> Option<String> {
+        let find = |m: Mode, spp: u32| {
+            self.runs
+                .iter()
+                .find(|r| r.mode == m && r.param == spp as f64)
+        };
+        let d = find(Mode::Denoised, few)?;
+        let sobol = Mode::Uniform(SamplerKind::Sobol);
+        let (spp, rel): (Vec<f64>, Vec<f64>) = self
+            .runs
+            .iter()
+            .filter(|r| r.mode == sobol)
+            .map(|r| (r.mean_spp, r.rel_mse))
+            .unzip();
+        let by_spp: Vec<(f64, f64)> = spp.into_iter().zip(rel).collect();
+        let catch_up = time_to_reach(&by_spp, d.rel_mse, fit_slope(&by_spp));
+        let mut s = format!(
+            "\ndenoised {few} spp: relMSE {:.3e} (relMSE* {:.3e}, {:.2} s with denoising)\n",
+            d.rel_mse, d.rel_mse_trim, d.seconds
+        );
+        if let Some(r) = find(sobol, many) {
+            let _ = writeln!(
+                s,
+                "raw sobol {many} spp: relMSE {:.3e} (relMSE* {:.3e}, {:.2} s)",
+                r.rel_mse, r.rel_mse_trim, r.seconds
+            );
+        }
+        let _ = writeln!(
+            s,
+            "raw sobol reaches the denoised {few}-spp relMSE at {} spp{}",
+            catch_up.map_or("-".into(), |x| format!("{x:.0}")),
+            if by_spp.is_empty() {
+                " (no sobol ladder)"
+            } else {
+                ""
+            }
+        );
+        Some(s)
     }
 
     pub fn write_csv(&self, runs_path: &Path, summary_path: &Path) -> Result<()> {

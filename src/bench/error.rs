@@ -18,6 +18,8 @@ pub enum BenchError {
     Job(#[from] JobError),
     #[error(transparent)]
     Film(#[from] FilmError),
+    #[error(transparent)]
+    Denoise(#[from] crate::film::denoise::DenoiseError),
     #[error("{0}: no triangles to trace")]
     NoTriangles(String),
     #[error("{0}: no triangles or CSG objects to trace")]

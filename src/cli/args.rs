@@ -5,7 +5,9 @@ use anyhow::{Context, Result};
 use glam::Vec3;
 
 use crate::accel::Backend;
-use crate::film::{Display, ViewTransform};
+use crate::film::aov::FeatureImages;
+use crate::film::denoise::{DenoiseError, DenoiseQuality, Denoiser};
+use crate::film::{Display, Image, ViewTransform};
 use crate::render::job::{DefaultLights, LensOptions, Overrides, Time};
 
 /// What `render` and `turntable` share: image size, sampling, backend, seed, lights, exposure,
@@ -87,6 +89,54 @@ impl Args {
                 .context("setting up the thread pool")?;
         }
         Ok(())
+    }
+}
+
+/// Denoising with Intel Open Image Denoise.
+#[derive(clap::Args, Debug, Default)]
+pub struct DenoiseArgs {
+    /// Denoise the image (Open Image Denoise's RT filter, HDR, guided by prefiltered albedo and
+    /// normal images taken at the first non-specular surface).
+    #[arg(long)]
+    pub denoise: bool,
+    /// The denoiser's speed/quality trade.
+    #[arg(long, value_enum, default_value_t = DenoiseQuality::High, requires = "denoise")]
+    pub denoise_quality: DenoiseQuality,
+}
+
+impl DenoiseArgs {
+    /// The denoiser when asked for (on `threads` threads, default all), or an error naming why
+    /// there is none.
+    pub fn denoiser(&self, threads: Option<usize>) -> Result<Option<Denoiser>> {
+        if !self.denoise {
+            return Ok(None);
+        }
+        let d = Denoiser::new(threads.unwrap_or(0), self.denoise_quality).context("--denoise")?;
+        Ok(Some(d))
+    }
+
+    /// The quality to denoise with, if asked (an error at once when this build has no denoiser).
+    pub fn quality(&self) -> Option<DenoiseQuality> {
+        self.denoise.then_some(self.denoise_quality)
+    }
+
+    /// Fails when denoising is asked of a build without the denoiser.
+    pub fn check(&self) -> Result<()> {
+        if self.denoise && !Denoiser::AVAILABLE {
+            return Err(DenoiseError::NotBuilt).context("--denoise");
+        }
+        Ok(())
+    }
+
+    /// The denoised image and the seconds it took.
+    pub fn run(
+        d: &Denoiser,
+        image: &Image,
+        features: Option<&FeatureImages>,
+    ) -> Result<(Image, f64)> {
+        let t = std::time::Instant::now();
+        let out = d.denoise(image, features.map(FeatureImages::guides))?;
+        Ok((out, t.elapsed().as_secs_f64()))
     }
 }
 

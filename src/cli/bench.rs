@@ -105,6 +105,10 @@ pub struct ConvergenceArgs {
     pub backend: Backend,
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+    /// Also the uniform Sobol ladder denoised with Open Image Denoise (albedo and normal guides),
+    /// compared with raw sampling.
+    #[arg(long)]
+    pub denoise: bool,
     /// Only the tables, no per-run log.
     #[arg(short, long)]
     pub quiet: bool,
@@ -147,6 +151,7 @@ pub fn run(cmd: BenchCommand) -> Result<()> {
     match cmd {
         BenchCommand::Convergence(a) => {
             use crate::bench::convergence::{self, ConvergenceConfig};
+            use crate::film::denoise::DenoiseQuality;
             let mut ladder = vec![1u32];
             while ladder.last().unwrap() * 2 <= a.max_spp.max(1) {
                 ladder.push(ladder.last().unwrap() * 2);
@@ -169,6 +174,7 @@ pub fn run(cmd: BenchCommand) -> Result<()> {
                 adaptive_min_spp: a.adaptive_min_spp.max(1),
                 adaptive_max_spp: a.adaptive_max_spp,
                 corner_targets: a.corner_targets,
+                denoise: a.denoise.then_some(DenoiseQuality::High),
                 ..Default::default()
             };
             let report = convergence::run(&a.input, &a.out, &config, !a.quiet)?;

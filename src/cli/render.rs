@@ -6,15 +6,16 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Context, Result};
 use glam::Vec3;
 
-use super::args::{parse_duration, parse_vec3, Args, LensArgs, TimeArgs};
+use super::args::{parse_duration, parse_vec3, Args, DenoiseArgs, LensArgs, TimeArgs};
 use super::progress_bar;
+use crate::film::aov::{Aov, Outputs};
 use crate::film::filter::FilterKind;
 use crate::film::shard::{self, SampleShard, Shard};
 use crate::film::{self, Display, Format, Image, ViewTransform};
 use crate::render::job::{
-    Basics, CameraChoice, CameraRef, Environment, JobOptions, Overrides, Setup, View,
+    Basics, CameraChoice, CameraRef, Environment, JobOptions, Overrides, RenderJob, Setup, View,
 };
-use crate::render::{AdaptiveMode, RenderSettings};
+use crate::render::{AdaptiveMode, RenderOutput, RenderSettings};
 use crate::sample::SamplerKind;
 
 #[derive(clap::Args, Debug)]
@@ -89,10 +90,13 @@ pub struct RenderArgs {
     /// Also write the samples each pixel took (.exr: counts; .png: counts / the most).
     #[arg(long)]
     pub spp_map: Option<PathBuf>,
-    /// Extra images beside the output, comma separated: `spp` writes OUTPUT's name with `.spp`
-    /// before the extension (what --spp-map FILE writes elsewhere).
+    /// Feature images, comma separated: layers of the output for .exr (`albedo.R`, `N.X`, `Z`,
+    /// `P.X`, `instance.id`, `material.id`, `variance.R`, `spp.count`, `raw.R`), files beside it for
+    /// .png (`out.albedo.png`, `out.spp.png`, ...).
     #[arg(long, value_enum, value_delimiter = ',')]
     pub aov: Vec<Aov>,
+    #[command(flatten)]
+    pub denoise: DenoiseArgs,
     /// Render only the sample indices i with i mod N == I of every pixel (machine I of N), into an
     /// .exr shard holding exact sums; `glint merge` adds the N shards into the whole render.
     #[arg(long, value_name = "I/N")]
@@ -101,13 +105,6 @@ pub struct RenderArgs {
     pub lens: LensArgs,
     #[command(flatten)]
     pub time: TimeArgs,
-}
-
-/// Per-pixel images a render can write beside its output.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum Aov {
-    /// Samples each pixel took.
-    Spp,
 }
 
 impl RenderArgs {
@@ -155,13 +152,6 @@ impl RenderArgs {
     }
 }
 
-/// `out.exr` -> `out.spp.exr`: an AOV's file beside the output, in the output's format.
-fn aov_path(output: &Path, aov: &str) -> PathBuf {
-    let stem = output.file_stem().unwrap_or_default().to_string_lossy();
-    let ext = output.extension().unwrap_or_default().to_string_lossy();
-    output.with_file_name(format!("{stem}.{aov}.{ext}"))
-}
-
 /// A sample shard needs an .exr output and a fixed sample count (the same samples on every machine).
 fn check_sample_shard(args: &RenderArgs) -> Result<()> {
     if args.sample_shard.is_none() {
@@ -176,12 +166,27 @@ fn check_sample_shard(args: &RenderArgs) -> Result<()> {
     if args.adaptive || args.adaptive_mode.is_some() || args.time_budget.is_some() {
         bail!("--sample-shard needs a fixed --spp: adaptive sampling and --time choose samples per machine");
     }
+    if args.denoise.denoise || !args.aov.is_empty() {
+        bail!("--sample-shard keeps sums only: denoise and take AOVs of the merged image instead");
+    }
+    Ok(())
+}
+
+/// AOVs and denoising need what only the filtered modes give.
+fn check_aovs(args: &RenderArgs) -> Result<()> {
+    if args.aov.contains(&Aov::BeautyRaw) && !args.denoise.denoise {
+        bail!("--aov beauty-raw is the image before denoising: it needs --denoise");
+    }
+    let features = args.denoise.denoise || args.aov.iter().any(|a| a.needs_features());
+    if features && args.adaptive_mode == Some(AdaptiveMode::Corners) {
+        bail!("--denoise and feature AOVs need filtered samples: not with --adaptive-mode corners");
+    }
     Ok(())
 }
 
 /// What makes two renders' pixels differ: the glint version, the input file's bytes (and the
 /// environment map's), the job's options and the resolved settings and camera.
-fn settings_hash(args: &RenderArgs, job: &crate::render::job::RenderJob) -> Result<u64> {
+fn settings_hash(args: &RenderArgs, job: &RenderJob) -> Result<u64> {
     let read = |p: &Path| std::fs::read(p).with_context(|| format!("reading {}", p.display()));
     let input = read(&args.input)?;
     let env = args
@@ -200,12 +205,12 @@ fn settings_hash(args: &RenderArgs, job: &crate::render::job::RenderJob) -> Resu
     Ok(shard::settings_hash(&[&input, &env, text.as_bytes()]))
 }
 
-pub fn run(mut args: RenderArgs) -> Result<()> {
+/// Checks the flags against each other and the output's folder before any work.
+fn check(args: &mut RenderArgs) -> Result<()> {
     // Fail on a bad output name before spending time on the render.
     Format::from_path(&args.output)?;
-    if args.aov.contains(&Aov::Spp) && args.spp_map.is_none() {
-        args.spp_map = Some(aov_path(&args.output, "spp"));
-    }
+    args.aov.sort_unstable();
+    args.aov.dedup();
     if let Some(map) = &args.spp_map {
         Format::from_path(map)?;
     }
@@ -214,14 +219,25 @@ pub fn run(mut args: RenderArgs) -> Result<()> {
             bail!("{}: output folder does not exist", parent.display());
         }
     }
-    check_sample_shard(&args)?;
-    args.common.set_threads()?;
-    // What an earlier, killed render of these outputs left: temporary files of dead processes.
+    check_sample_shard(args)?;
+    check_aovs(args)
+}
+
+/// What an earlier, killed render of these outputs left: temporary files of dead processes.
+fn remove_stale_temps(args: &RenderArgs) {
     for out in std::iter::once(&args.output).chain(&args.spp_map) {
         let name = out.file_name().unwrap_or_default();
         let dir = out.parent().unwrap_or(Path::new(""));
         film::remove_stale_temps(dir, |n| std::ffi::OsStr::new(n) == name);
     }
+}
+
+pub fn run(mut args: RenderArgs) -> Result<()> {
+    check(&mut args)?;
+    args.common.set_threads()?;
+    remove_stale_temps(&args);
+    // Before the render: a build without the denoiser says so at once.
+    let denoiser = args.denoise.denoiser(args.common.threads)?;
 
     let mut warn = |w: &str| eprintln!("warning: {}: {w}", args.input.display());
     let job = Setup::load(&args.input, &args.options(), &mut warn)?.build()?;
@@ -234,37 +250,59 @@ pub fn run(mut args: RenderArgs) -> Result<()> {
     }
     let settings = RenderSettings {
         sample_shard: args.sample_shard,
+        feature_images: denoiser.is_some() || args.aov.iter().any(|a| a.needs_features()),
         ..job.settings.clone()
     };
     let out = job.render_with(&settings, &progress);
-    let (s, stats) = (&job.settings, out.stats);
+    let denoised = denoiser
+        .as_ref()
+        .map(|d| DenoiseArgs::run(d, &out.image, out.features.as_ref()))
+        .transpose()?;
     match args.sample_shard {
         Some(shard) => shard::write_sample_shard(
             &SampleShard {
                 shard,
                 settings: settings_hash(&args, &job)?,
-                width: s.width,
-                height: s.height,
+                width: settings.width,
+                height: settings.height,
                 sums: out.sums.clone(),
             },
             &args.output,
         )?,
-        None => film::write_with(&out.image, &args.output, &args.common.display())?,
+        None => Outputs {
+            beauty: denoised.as_ref().map_or(&out.image, |d| &d.0),
+            raw: denoised.is_some().then_some(&out.image),
+            features: out.features.as_ref(),
+            spp: &out.spp,
+        }
+        .write(&args.aov, &args.output, &args.common.display())?,
     }
     if let Some(path) = &args.spp_map {
-        let scale = match Format::from_path(path)? {
-            Format::Exr => 1.0,
-            Format::Png => 1.0 / stats.max_spp.max(1) as f32,
-        };
-        let values: Vec<f32> = out.spp.iter().map(|&n| n as f32 * scale).collect();
-        // Counts are data, not light: shown as they are, no tone curve.
-        let plain = Display::new(0.0, ViewTransform::Standard);
-        film::write_with(
-            &Image::from_scalars(s.width, s.height, &values),
-            path,
-            &plain,
-        )?;
+        write_spp_map(&out, path)?;
     }
+    if !args.common.quiet {
+        eprintln!("{}", summary(&args, &job, &out, denoised.map(|d| d.1)));
+    }
+    Ok(())
+}
+
+/// The samples each pixel took, into `path` (.exr: counts; .png: counts over the most).
+fn write_spp_map(out: &RenderOutput, path: &Path) -> Result<()> {
+    let scale = match Format::from_path(path)? {
+        Format::Exr => 1.0,
+        Format::Png => 1.0 / out.stats.max_spp.max(1) as f32,
+    };
+    let values: Vec<f32> = out.spp.iter().map(|&n| n as f32 * scale).collect();
+    // Counts are data, not light: shown as they are, no tone curve.
+    let plain = Display::new(0.0, ViewTransform::Standard);
+    let (w, h) = (out.image.width, out.image.height);
+    film::write_with(&Image::from_scalars(w, h, &values), path, &plain)?;
+    Ok(())
+}
+
+/// The summary line: size, samples, backend, time, rays (and the denoiser's seconds).
+fn summary(args: &RenderArgs, job: &RenderJob, out: &RenderOutput, denoise: Option<f64>) -> String {
+    let (s, stats) = (&job.settings, out.stats);
     let spp_text = if stats.min_spp == stats.max_spp {
         format!("{}", stats.max_spp)
     } else {
@@ -276,20 +314,18 @@ pub fn run(mut args: RenderArgs) -> Result<()> {
             stats.rounds
         )
     };
-    if !args.common.quiet {
-        eprintln!(
-            "{}: {}x{} at {} spp with {} in {:.2} s: {} rays, {:.2} Mrays/s (load {:.2} s, build {:.3} s)",
-            args.output.display(),
-            s.width,
-            s.height,
-            spp_text,
-            job.accel.name(),
-            stats.seconds,
-            stats.rays,
-            stats.mrays_per_second(),
-            job.load_seconds,
-            job.build_seconds
-        );
-    }
-    Ok(())
+    let denoise_text = denoise.map_or(String::new(), |t| format!(", denoised in {t:.2} s"));
+    format!(
+        "{}: {}x{} at {} spp with {} in {:.2} s: {} rays, {:.2} Mrays/s (load {:.2} s, build {:.3} s){denoise_text}",
+        args.output.display(),
+        s.width,
+        s.height,
+        spp_text,
+        job.accel.name(),
+        stats.seconds,
+        stats.rays,
+        stats.mrays_per_second(),
+        job.load_seconds,
+        job.build_seconds
+    )
 }

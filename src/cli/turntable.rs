@@ -7,7 +7,7 @@ use std::time::Instant;
 use anyhow::{bail, Result};
 use clap::ValueEnum;
 
-use super::args::Args;
+use super::args::{Args, DenoiseArgs};
 use super::{load, progress_bar};
 use crate::film::Format;
 use crate::render::job::{self, Basics, CameraChoice, JobOptions, Overrides, Setup, View};
@@ -84,6 +84,8 @@ pub struct TurntableArgs {
     #[arg(long)]
     pub contact_sheet: Option<PathBuf>,
     #[command(flatten)]
+    pub denoise: DenoiseArgs,
+    #[command(flatten)]
     pub common: Args,
 }
 
@@ -138,6 +140,7 @@ fn plan(args: &TurntableArgs) -> Result<Plan> {
         &args.common.overrides(),
     );
     basics.validate()?;
+    args.denoise.check()?;
     if !(args.elevation > -90.0 && args.elevation < 90.0) {
         bail!("--elevation must be between -90 and 90 degrees (exclusive)");
     }
@@ -270,6 +273,7 @@ fn render_frames(args: &TurntableArgs, plan: &Plan) -> Result<()> {
         exposure: args.common.exposure,
         view: args.common.view,
         overwrite: args.overwrite,
+        denoise: args.denoise.quality(),
     };
     let progress = progress_bar(
         args.common.quiet,

@@ -1,7 +1,10 @@
 //! The film: a linear RGBA float image that the integrator fills, and its output as PNG or EXR.
 //! Files are written to a temporary name beside the target and renamed, so no half image is ever left.
 
+pub mod aov;
+pub mod denoise;
 pub mod filter;
+pub mod layers;
 pub mod shard;
 pub mod view;
 
@@ -28,6 +31,8 @@ pub enum FilmError {
         #[source]
         source: std::io::Error,
     },
+    #[error("the {0} image was asked for but not rendered")]
+    MissingAov(&'static str),
     #[error("{}: {error}", path.display())]
     ReadExr {
         path: PathBuf,
@@ -45,7 +50,7 @@ pub enum EncodeError {
 }
 
 /// A linear-light RGBA image, row-major, first row at the top.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Image {
     pub width: usize,
     pub height: usize,
@@ -258,6 +263,26 @@ fn write_png(image: &Image, path: &Path, display: &Display) -> Result<(), Encode
         image::ImageFormat::Png,
     )?;
     Ok(())
+}
+
+/// Writes 8-bit RGB bytes (data, no tone curve) as a PNG, through a temporary file.
+pub(crate) fn write_png_bytes(
+    path: &Path,
+    w: usize,
+    h: usize,
+    rgb: &[u8],
+) -> Result<(), FilmError> {
+    write_through_temp(path, |tmp| {
+        image::save_buffer_with_format(
+            tmp,
+            rgb,
+            w as u32,
+            h as u32,
+            image::ColorType::Rgb8,
+            image::ImageFormat::Png,
+        )?;
+        Ok(())
+    })
 }
 
 fn write_exr(image: &Image, path: &Path) -> Result<(), EncodeError> {

@@ -3,6 +3,7 @@
 
 use glam::{Vec3, Vec4};
 
+use super::features::PathFeatures;
 use super::light::LightSet;
 use super::offset::offset_ray_origin;
 use super::surface::SurfaceInteraction;
@@ -56,10 +57,26 @@ impl<'a> Integrator<'a> {
     }
 
     pub fn li(&self, camera_ray: Ray, sampler: &mut dyn Sampler) -> PathResult {
+        let mut none = PathFeatures::default();
         if self.thin_shadows {
-            self.li_with::<true>(camera_ray, sampler)
+            self.li_with::<true, false>(camera_ray, sampler, &mut none)
         } else {
-            self.li_with::<false>(camera_ray, sampler)
+            self.li_with::<false, false>(camera_ray, sampler, &mut none)
+        }
+    }
+
+    /// `li`, also noting what the path saw for the feature images (the same radiance, from the
+    /// same samples: the features only watch).
+    pub fn li_features(
+        &self,
+        camera_ray: Ray,
+        sampler: &mut dyn Sampler,
+        features: &mut PathFeatures,
+    ) -> PathResult {
+        if self.thin_shadows {
+            self.li_with::<true, true>(camera_ray, sampler, features)
+        } else {
+            self.li_with::<false, true>(camera_ray, sampler, features)
         }
     }
 
@@ -98,138 +115,65 @@ impl<'a> Integrator<'a> {
         Vec3::ZERO
     }
 
-    fn li_with<const THIN: bool>(&self, camera_ray: Ray, sampler: &mut dyn Sampler) -> PathResult {
+    /// With `FEATURES`, `features` follows the path; without, it is never touched (and the plain
+    /// render compiles to the same code as before features existed).
+    fn li_with<const THIN: bool, const FEATURES: bool>(
+        &self,
+        camera_ray: Ray,
+        sampler: &mut dyn Sampler,
+        features: &mut PathFeatures,
+    ) -> PathResult {
         let mut ray = camera_ray.with_seed(sampler.get_seed(0));
         let mut l = Vec3::ZERO;
-        let mut beta = Vec3::ONE;
         let mut alpha = 1.0;
         let mut rays = 0;
-        // The pdf of the BSDF sample that produced `ray`, and where it left from (for MIS on
-        // emitters the ray hits).
-        let mut prev: Option<(f32, Vec3)> = None;
-        // Absorption coefficient of the medium the ray travels through (zero outside any).
-        let mut medium = Vec3::ZERO;
-        // Product of the eta^2 factors refraction put into `beta`, kept out of Russian roulette.
-        let mut eta_scale = 1.0f32;
+        let mut st = PathState::default();
         for bounce in 0.. {
             rays += 1;
             let hit = self.accel.intersect(&ray);
-            if medium != Vec3::ZERO {
+            if st.medium != Vec3::ZERO {
                 // Beer-Lambert over the segment inside; a ray that escapes an open medium is lost.
                 let dist = hit.map_or(f32::INFINITY, |h| h.t * ray.d.length());
-                beta *= (-medium * dist).exp();
+                st.beta *= (-st.medium * dist).exp();
             }
             // Analytic lights and environments are not in the accelerator: the ray collects their
             // (MIS-weighted) radiance up to the scene hit or on leaving the scene.
-            let pdf_prev = prev.map(|(pdf, _)| pdf);
+            let pdf_prev = st.prev.map(|(pdf, _)| pdf);
             let t_hit = hit.as_ref().map_or(f32::INFINITY, |h| h.t);
             let le = self.lights.emitted(&ray, t_hit, pdf_prev);
-            l += beta * le;
+            l += st.beta * le;
             let Some(hit) = hit else {
-                l += beta * self.lights.escaped(ray.d, pdf_prev);
+                if FEATURES {
+                    features.escaped();
+                }
+                l += st.beta * self.lights.escaped(ray.d, pdf_prev);
                 if bounce == 0 && le == Vec3::ZERO {
                     alpha = 0.0;
                 }
                 break;
             };
             let si = SurfaceInteraction::new(self.scene, &hit, &ray);
+            if FEATURES {
+                features.hit(&si, bounce);
+            }
             if si.emission != Vec3::ZERO {
-                let w = match prev {
-                    None => 1.0,
-                    Some((pdf_bsdf, from)) => {
-                        let pdf_light = self
-                            .lights
-                            .pdf_triangle(si.inst, si.prim, from, si.p, si.ng);
-                        power_heuristic(pdf_bsdf, pdf_light)
-                    }
-                };
-                l += beta * si.emission * w;
+                l += st.beta * si.emission * self.emission_weight(&si, st.prev);
             }
             if bounce >= self.max_depth || si.unlit {
                 break;
             }
-            let wo = -ray.d;
-            let seed = sampler.get_seed(bounce + 1);
-            let n = si.bsdf.frame.n;
-            // Rays leave on the side of the surface their direction points to.
-            let origin_towards =
-                |d: Vec3| offset_ray_origin(si.p, if d.dot(si.ng) >= 0.0 { si.ng } else { -si.ng });
-
-            // Next-event estimation (pointless when every lobe is a delta lobe).
-            let u_choice = sampler.get_1d(Dim::LightChoice, bounce);
-            let u_light = sampler.get_2d(Dim::Light, bounce);
-            let light = if si.bsdf.is_delta() {
-                None
-            } else {
-                self.lights.sample(self.scene, si.p, u_choice, u_light)
+            let leave = Leave {
+                wo: -ray.d,
+                seed: sampler.get_seed(bounce + 1),
+                time: ray.time,
             };
-            if let Some(ls) = light {
-                let cos = ls.wi.dot(n);
-                // The shading and geometric normals must agree on the side; behind the surface
-                // only transmissive materials see lights.
-                let side_ok = cos * ls.wi.dot(si.ng) > 0.0 && (cos > 0.0 || si.bsdf.transmits());
-                if side_ok && ls.li != Vec3::ZERO {
-                    let (f, pdf_bsdf) = si.bsdf.eval(wo, ls.wi);
-                    if f != Vec3::ZERO {
-                        let t_max = if ls.dist.is_finite() {
-                            (ls.dist * (1.0 - SHADOW_SHORTEN)).max(0.0)
-                        } else {
-                            f32::INFINITY
-                        };
-                        let shadow = Ray::segment(origin_towards(ls.wi), ls.wi, t_max)
-                            .with_seed(seed)
-                            .with_time(ray.time);
-                        let tr = self.transmittance::<THIN>(shadow, &mut rays);
-                        if tr != Vec3::ZERO {
-                            let w = if ls.is_delta {
-                                1.0
-                            } else {
-                                power_heuristic(ls.pdf, pdf_bsdf)
-                            };
-                            l += beta * tr * f * ls.li * (cos.abs() * w / ls.pdf);
-                        }
-                    }
-                }
+            let nee = self.next_event::<THIN>(&si, &leave, bounce, st.beta, sampler, &mut rays);
+            if let Some(c) = nee {
+                l += c;
             }
-
-            // Continue the path by sampling the BSDF.
-            let u_lobe = sampler.get_1d(Dim::BsdfLobe, bounce);
-            let u_dir = sampler.get_2d(Dim::Bsdf, bounce);
-            let Some(s) = si.bsdf.sample(wo, u_lobe, u_dir) else {
-                break;
-            };
-            // A shading normal can send a sample to the other side of the true surface than it
-            // meant to: end the path there rather than leak light through it.
-            let cos = s.wi.dot(n);
-            if cos * s.wi.dot(si.ng) <= 0.0 {
-                break;
-            }
-            beta *= s.f * (cos.abs() / s.pdf);
-            if cos < 0.0 && !si.bsdf.thin {
-                // Crossing into or out of a thick transmissive object.
-                medium = if si.bsdf.outside {
-                    si.bsdf.absorption
-                } else {
-                    Vec3::ZERO
-                };
-                eta_scale *= s.eta * s.eta;
-            }
-            // After a delta lobe no light sample could have found the emitter hit next, so it
-            // counts fully; straight through a thin wall the previous vertex's MIS state holds,
-            // since shadow rays see through it.
-            if !s.straight {
-                prev = (!s.delta).then_some((s.pdf, si.p));
-            }
-            ray = Ray::new(origin_towards(s.wi), s.wi)
-                .with_seed(seed)
-                .with_time(ray.time);
-
-            if bounce + 1 >= ROULETTE_START {
-                let q = (beta.max_element() * eta_scale).min(0.95);
-                if q <= 0.0 || sampler.get_1d(Dim::Roulette, bounce) >= q {
-                    break;
-                }
-                beta /= q;
+            match self.scatter(&si, &leave, bounce, &mut st, sampler) {
+                Some(next) => ray = next,
+                None => break,
             }
         }
         PathResult {
@@ -237,4 +181,150 @@ impl<'a> Integrator<'a> {
             rays,
         }
     }
+
+    /// MIS weight of emission found by a BSDF sample from `prev` (1 for camera rays and after
+    /// delta lobes).
+    fn emission_weight(&self, si: &SurfaceInteraction, prev: Option<(f32, Vec3)>) -> f32 {
+        match prev {
+            None => 1.0,
+            Some((pdf_bsdf, from)) => {
+                let pdf_light = self
+                    .lights
+                    .pdf_triangle(si.inst, si.prim, from, si.p, si.ng);
+                power_heuristic(pdf_bsdf, pdf_light)
+            }
+        }
+    }
+
+    /// Next-event estimation at `si`: `beta` times the MIS-weighted light a light sample brings, if
+    /// any (pointless when every lobe is a delta lobe, but the sample dimensions are drawn anyway).
+    fn next_event<const THIN: bool>(
+        &self,
+        si: &SurfaceInteraction,
+        leave: &Leave,
+        bounce: u32,
+        beta: Vec3,
+        sampler: &mut dyn Sampler,
+        rays: &mut u32,
+    ) -> Option<Vec3> {
+        let u_choice = sampler.get_1d(Dim::LightChoice, bounce);
+        let u_light = sampler.get_2d(Dim::Light, bounce);
+        if si.bsdf.is_delta() {
+            return None;
+        }
+        let ls = self.lights.sample(self.scene, si.p, u_choice, u_light)?;
+        let cos = ls.wi.dot(si.bsdf.frame.n);
+        // The shading and geometric normals must agree on the side; behind the surface only
+        // transmissive materials see lights.
+        let side_ok = cos * ls.wi.dot(si.ng) > 0.0 && (cos > 0.0 || si.bsdf.transmits());
+        if !side_ok || ls.li == Vec3::ZERO {
+            return None;
+        }
+        let (f, pdf_bsdf) = si.bsdf.eval(leave.wo, ls.wi);
+        if f == Vec3::ZERO {
+            return None;
+        }
+        let t_max = if ls.dist.is_finite() {
+            (ls.dist * (1.0 - SHADOW_SHORTEN)).max(0.0)
+        } else {
+            f32::INFINITY
+        };
+        let shadow = Ray::segment(origin_towards(si, ls.wi), ls.wi, t_max)
+            .with_seed(leave.seed)
+            .with_time(leave.time);
+        let tr = self.transmittance::<THIN>(shadow, rays);
+        if tr == Vec3::ZERO {
+            return None;
+        }
+        let w = if ls.is_delta {
+            1.0
+        } else {
+            power_heuristic(ls.pdf, pdf_bsdf)
+        };
+        Some(beta * tr * f * ls.li * (cos.abs() * w / ls.pdf))
+    }
+
+    /// Continues the path by sampling the BSDF at `si` (then Russian roulette): the next ray, or
+    /// None where the path ends.
+    fn scatter(
+        &self,
+        si: &SurfaceInteraction,
+        leave: &Leave,
+        bounce: u32,
+        st: &mut PathState,
+        sampler: &mut dyn Sampler,
+    ) -> Option<Ray> {
+        let u_lobe = sampler.get_1d(Dim::BsdfLobe, bounce);
+        let u_dir = sampler.get_2d(Dim::Bsdf, bounce);
+        let s = si.bsdf.sample(leave.wo, u_lobe, u_dir)?;
+        // A shading normal can send a sample to the other side of the true surface than it meant
+        // to: end the path there rather than leak light through it.
+        let cos = s.wi.dot(si.bsdf.frame.n);
+        if cos * s.wi.dot(si.ng) <= 0.0 {
+            return None;
+        }
+        st.beta *= s.f * (cos.abs() / s.pdf);
+        if cos < 0.0 && !si.bsdf.thin {
+            // Crossing into or out of a thick transmissive object.
+            st.medium = if si.bsdf.outside {
+                si.bsdf.absorption
+            } else {
+                Vec3::ZERO
+            };
+            st.eta_scale *= s.eta * s.eta;
+        }
+        // After a delta lobe no light sample could have found the emitter hit next, so it counts
+        // fully; straight through a thin wall the previous vertex's MIS state holds, since shadow
+        // rays see through it.
+        if !s.straight {
+            st.prev = (!s.delta).then_some((s.pdf, si.p));
+        }
+        let ray = Ray::new(origin_towards(si, s.wi), s.wi)
+            .with_seed(leave.seed)
+            .with_time(leave.time);
+        if bounce + 1 >= ROULETTE_START {
+            let q = (st.beta.max_element() * st.eta_scale).min(0.95);
+            if q <= 0.0 || sampler.get_1d(Dim::Roulette, bounce) >= q {
+                return None;
+            }
+            st.beta /= q;
+        }
+        Some(ray)
+    }
+}
+
+/// What a path carries from vertex to vertex besides its ray.
+struct PathState {
+    /// Throughput.
+    beta: Vec3,
+    /// The pdf of the BSDF sample that produced the ray, and where it left from (for MIS on
+    /// emitters the ray hits).
+    prev: Option<(f32, Vec3)>,
+    /// Absorption coefficient of the medium the ray travels through (zero outside any).
+    medium: Vec3,
+    /// Product of the eta^2 factors refraction put into `beta`, kept out of Russian roulette.
+    eta_scale: f32,
+}
+
+impl Default for PathState {
+    fn default() -> Self {
+        Self {
+            beta: Vec3::ONE,
+            prev: None,
+            medium: Vec3::ZERO,
+            eta_scale: 1.0,
+        }
+    }
+}
+
+/// How rays leave a vertex: towards `wo` came the incoming ray; new rays take its seed and time.
+struct Leave {
+    wo: Vec3,
+    seed: u32,
+    time: f32,
+}
+
+/// Where a ray in direction `d` leaves the surface: on the side `d` points to.
+fn origin_towards(si: &SurfaceInteraction, d: Vec3) -> Vec3 {
+    offset_ray_origin(si.p, if d.dot(si.ng) >= 0.0 { si.ng } else { -si.ng })
 }

@@ -3,6 +3,8 @@
 
 pub mod bsdf;
 pub mod camera;
+pub mod feature_film;
+pub mod features;
 pub mod integrator;
 pub mod job;
 pub mod light;
@@ -16,8 +18,12 @@ use glam::{DVec4, Vec2, Vec4};
 use indicatif::ProgressBar;
 use rayon::prelude::*;
 
+pub use crate::film::aov::FeatureImages;
 pub use camera::RayCamera;
 pub use integrator::Integrator;
+
+use feature_film::{DepthAxis, FeatureAcc};
+use features::PathFeatures;
 
 use crate::accel::Accel;
 use crate::film::filter::{Filter, FilterKind};
@@ -90,6 +96,9 @@ pub struct RenderSettings {
     /// Take only the sample indices of this shard in every pixel (non-adaptive renders); the
     /// shards' `RenderOutput::sums` add up to the whole render's.
     pub sample_shard: Option<Shard>,
+    /// Also accumulate the feature images (`RenderOutput::features`; not in the corner mode). Off,
+    /// the render does exactly what it did before they existed.
+    pub feature_images: bool,
 }
 
 impl Default for RenderSettings {
@@ -111,6 +120,7 @@ impl Default for RenderSettings {
             shutter: [0.0, 0.0],
             frame_time: 0.0,
             sample_shard: None,
+            feature_images: false,
         }
     }
 }
@@ -142,6 +152,8 @@ pub struct RenderOutput {
     pub spp: Vec<u32>,
     /// Each pixel's weighted sum of samples and of weights (what a sample shard keeps).
     pub sums: Vec<PixelSum>,
+    /// The feature images, when `RenderSettings::feature_images` asked for them.
+    pub features: Option<FeatureImages>,
 }
 
 impl RenderOutput {
@@ -203,6 +215,8 @@ struct Tile {
     y0: usize,
     x1: usize,
     px: Vec<Acc>,
+    /// Feature sums per pixel, empty unless feature images are asked for.
+    features: Vec<FeatureAcc>,
 }
 
 struct Ctx<'a> {
@@ -211,17 +225,48 @@ struct Ctx<'a> {
     filter: Filter,
     settings: &'a RenderSettings,
     pass: u32,
+    axis: DepthAxis,
 }
 
 impl Ctx<'_> {
-    /// Takes samples `acc.n .. to` of pixel (x, y); returns the rays traced.
-    fn sample_pixel(
+    /// Whether this render keeps feature images (not in the corner mode, whose samples are not
+    /// filtered as the others are).
+    fn takes_features(&self) -> bool {
+        self.settings.feature_images && self.settings.adaptive != AdaptiveMode::Corners
+    }
+
+    /// Takes this round's samples in every pixel of the tile; returns the rays traced.
+    fn sample_tile(&self, tile: &mut Tile, target: &[u32]) -> u64 {
+        let s = self.settings;
+        let mut sampler = AnySampler::new(s.sampler, s.seed, self.pass);
+        let mut rays = 0u64;
+        let tw = tile.x1 - tile.x0;
+        let mut unused = FeatureAcc::default();
+        for (k, acc) in tile.px.iter_mut().enumerate() {
+            let (x, y) = (tile.x0 + k % tw, tile.y0 + k / tw);
+            let to = target[y * s.width + x];
+            rays += if s.adaptive == AdaptiveMode::Corners {
+                self.corners_pixel(&mut sampler, x, y, acc)
+            } else if to <= acc.n {
+                0
+            } else if let Some(f) = tile.features.get_mut(k) {
+                self.sample_pixel::<true>(&mut sampler, (x, y), to, acc, f)
+            } else {
+                self.sample_pixel::<false>(&mut sampler, (x, y), to, acc, &mut unused)
+            };
+        }
+        rays
+    }
+
+    /// Takes samples `acc.n .. to` of pixel (x, y), with `FEATURES` also into `features`; returns
+    /// the rays traced.
+    fn sample_pixel<const FEATURES: bool>(
         &self,
         sampler: &mut AnySampler,
-        x: usize,
-        y: usize,
+        (x, y): (usize, usize),
         to: u32,
         acc: &mut Acc,
+        features: &mut FeatureAcc,
     ) -> u64 {
         let mut rays = 0u64;
         for i in acc.n..to {
@@ -231,16 +276,29 @@ impl Ctx<'_> {
             sampler.start(x as u32, y as u32, i);
             let (offset, w) = self.filter.sample(sampler.get_2d(Dim::Pixel, 0));
             let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
-            let r = self
-                .integrator
-                .li(self.cam.generate(film, sampler), sampler);
+            let ray = self.cam.generate(film, sampler);
+            let mut path = PathFeatures::default();
+            let r = if FEATURES {
+                self.integrator.li_features(ray, sampler, &mut path)
+            } else {
+                self.integrator.li(ray, sampler)
+            };
             rays += r.rays as u64;
             // A non-finite sample would poison the pixel: count it as black.
-            let v = if r.radiance.is_finite() {
+            let finite = r.radiance.is_finite();
+            let v = if finite {
                 r.radiance.as_dvec4() * w as f64
             } else {
                 DVec4::ZERO
             };
+            if FEATURES {
+                let l = if finite {
+                    r.radiance.as_dvec4()
+                } else {
+                    DVec4::ZERO
+                };
+                features.add(&path, l, w as f64, offset, &self.axis);
+            }
             acc.sum += v;
             acc.w += w as f64;
             if i % 2 == 0 {
@@ -391,17 +449,7 @@ pub fn render_full(
     let start = Instant::now();
     let (w, h) = (settings.width, settings.height);
     let adaptive = settings.adaptive;
-    let min_spp = settings.min_spp.max(1);
-    // Samples per stratified pass: what the first round takes.
-    let first = match (adaptive, settings.time_budget) {
-        (AdaptiveMode::Variance, _) => min_spp,
-        (AdaptiveMode::Off, Some(_)) => 1,
-        _ => settings.spp.max(1),
-    };
-    let pass = match (adaptive, settings.time_budget) {
-        (AdaptiveMode::Off, Some(_)) => 16,
-        _ => first,
-    };
+    let (first, pass) = first_round(settings);
     // Decided once: a static scene never draws a time, a pinhole never a lens position (RayCamera),
     // an opaque scene's shadow rays are plain occlusion queries (Integrator).
     let features = Features::of(scene, camera);
@@ -411,6 +459,7 @@ pub fn render_full(
         filter: Filter::new(settings.filter, settings.filter_radius),
         settings,
         pass,
+        axis: depth_axis(camera),
     };
     // Rounds that sample only some pixels balance better over smaller tiles.
     let edge = if adaptive == AdaptiveMode::Variance || settings.time_budget.is_some() {
@@ -418,18 +467,7 @@ pub fn render_full(
     } else {
         TILE
     };
-    let mut tiles: Vec<Tile> = (0..h.div_ceil(edge))
-        .flat_map(|ty| (0..w.div_ceil(edge)).map(move |tx| (tx * edge, ty * edge)))
-        .map(|(x0, y0)| {
-            let (x1, y1) = ((x0 + edge).min(w), (y0 + edge).min(h));
-            Tile {
-                x0,
-                y0,
-                x1,
-                px: vec![Acc::default(); (x1 - x0) * (y1 - y0)],
-            }
-        })
-        .collect();
+    let mut tiles = make_tiles(w, h, edge, ctx.takes_features());
     progress.set_length(0);
     let rays = AtomicU64::new(0);
     // Per-pixel sample count wanted after the current round (row-major).
@@ -440,78 +478,143 @@ pub fn render_full(
         rounds += 1;
         progress.inc_length(tiles.len() as u64);
         tiles.par_iter_mut().for_each(|tile| {
-            let mut sampler = AnySampler::new(settings.sampler, settings.seed, ctx.pass);
-            let mut tile_rays = 0u64;
-            let tw = tile.x1 - tile.x0;
-            for (k, acc) in tile.px.iter_mut().enumerate() {
-                let (x, y) = (tile.x0 + k % tw, tile.y0 + k / tw);
-                tile_rays += if adaptive == AdaptiveMode::Corners {
-                    ctx.corners_pixel(&mut sampler, x, y, acc)
-                } else {
-                    let to = target[y * w + x];
-                    if to > acc.n {
-                        ctx.sample_pixel(&mut sampler, x, y, to, acc)
-                    } else {
-                        0
-                    }
-                };
-            }
-            rays.fetch_add(tile_rays, Ordering::Relaxed);
+            rays.fetch_add(ctx.sample_tile(tile, &target), Ordering::Relaxed);
             progress.inc(1);
         });
         if adaptive == AdaptiveMode::Corners {
             break;
         }
-        // Plan the next round.
-        let counts = per_pixel(&tiles, w, h, |a| a.n);
-        let mut next: Vec<u32> = match adaptive {
-            AdaptiveMode::Variance => {
-                // Rays per sample so far (at least 1): the cost of one more sample there.
-                let cost = per_pixel(&tiles, w, h, |a| {
-                    (a.rays as f64 / a.n.max(1) as f64).max(1.0)
-                });
-                plan_variance_round(&counts, &error_map(&tiles, w, h), &cost, settings)
-            }
-            _ => match settings.time_budget {
-                Some(_) => counts.iter().map(|&n| 2 * n).collect(),
-                None => counts.clone(),
-            },
-        };
-        let mut needed: u64 = next.iter().zip(&counts).map(|(a, b)| (a - b) as u64).sum();
-        if let Some(budget) = settings.time_budget {
-            let spent = render_start.elapsed().as_secs_f64();
-            let done: u64 = counts.iter().map(|&n| n as u64).sum();
-            let per_sample = spent / done.max(1) as f64;
-            let left = budget.as_secs_f64() - start.elapsed().as_secs_f64();
-            let affordable = (left.max(0.0) / per_sample.max(1e-12) * 0.97) as u64;
-            if needed > affordable {
-                // Scale every pixel's increment down to what the remaining time buys.
-                let f = affordable as f64 / needed as f64;
-                for (t, &n) in next.iter_mut().zip(&counts) {
-                    *t = n + ((*t - n) as f64 * f) as u32;
-                }
-                needed = next.iter().zip(&counts).map(|(a, b)| (a - b) as u64).sum();
-            }
+        let budget = settings.time_budget.map(|b| Budget {
+            total: b,
+            start,
+            render_start,
+        });
+        match plan_next_round(&tiles, settings, budget) {
+            Some(next) => target = next,
+            None => break,
         }
-        if needed == 0 {
-            break;
-        }
-        target = next;
     }
     progress.finish_and_clear();
+    let mut out = collect(&tiles, settings, rays.into_inner(), rounds);
+    out.stats.seconds = start.elapsed().as_secs_f64();
+    out
+}
+
+/// Samples per pixel of the first round, and the samples per stratified pass.
+fn first_round(settings: &RenderSettings) -> (u32, u32) {
+    let first = match (settings.adaptive, settings.time_budget) {
+        (AdaptiveMode::Variance, _) => settings.min_spp.max(1),
+        (AdaptiveMode::Off, Some(_)) => 1,
+        _ => settings.spp.max(1),
+    };
+    let pass = match (settings.adaptive, settings.time_budget) {
+        (AdaptiveMode::Off, Some(_)) => 16,
+        _ => first,
+    };
+    (first, pass)
+}
+
+/// The image cut into tiles of `edge` pixels, with feature sums when `features`.
+fn make_tiles(w: usize, h: usize, edge: usize, features: bool) -> Vec<Tile> {
+    (0..h.div_ceil(edge))
+        .flat_map(|ty| (0..w.div_ceil(edge)).map(move |tx| (tx * edge, ty * edge)))
+        .map(|(x0, y0)| {
+            let (x1, y1) = ((x0 + edge).min(w), (y0 + edge).min(h));
+            let n = (x1 - x0) * (y1 - y0);
+            Tile {
+                x0,
+                y0,
+                x1,
+                px: vec![Acc::default(); n],
+                features: vec![FeatureAcc::default(); if features { n } else { 0 }],
+            }
+        })
+        .collect()
+}
+
+/// The camera's position and viewing axis at time 0, for depth.
+fn depth_axis(camera: &Camera) -> DepthAxis {
+    DepthAxis {
+        eye: camera.to_world.transform_point3(glam::Vec3::ZERO),
+        forward: camera
+            .to_world
+            .transform_vector3(glam::Vec3::NEG_Z)
+            .normalize_or_zero(),
+    }
+}
+
+/// A time budget: its length, when the render began and when its sampling began.
+#[derive(Clone, Copy)]
+struct Budget {
+    total: Duration,
+    start: Instant,
+    render_start: Instant,
+}
+
+/// The samples each pixel should have after the next round, or None when the render is done.
+fn plan_next_round(
+    tiles: &[Tile],
+    settings: &RenderSettings,
+    budget: Option<Budget>,
+) -> Option<Vec<u32>> {
+    let (w, h) = (settings.width, settings.height);
+    let counts = per_pixel(tiles, w, h, |a| a.n);
+    let mut next: Vec<u32> = match settings.adaptive {
+        AdaptiveMode::Variance => {
+            // Rays per sample so far (at least 1): the cost of one more sample there.
+            let cost = per_pixel(tiles, w, h, |a| {
+                (a.rays as f64 / a.n.max(1) as f64).max(1.0)
+            });
+            plan_variance_round(&counts, &error_map(tiles, w, h), &cost, settings)
+        }
+        _ => match budget {
+            Some(_) => counts.iter().map(|&n| 2 * n).collect(),
+            None => counts.clone(),
+        },
+    };
+    if let Some(b) = budget {
+        fit_to_budget(&mut next, &counts, b);
+    }
+    let needed: u64 = next.iter().zip(&counts).map(|(a, b)| (a - b) as u64).sum();
+    (needed > 0).then_some(next)
+}
+
+/// Scales every pixel's increment in `next` down to what the time left buys, at the speed so far.
+fn fit_to_budget(next: &mut [u32], counts: &[u32], b: Budget) {
+    let needed: u64 = next.iter().zip(counts).map(|(a, b)| (a - b) as u64).sum();
+    let spent = b.render_start.elapsed().as_secs_f64();
+    let done: u64 = counts.iter().map(|&n| n as u64).sum();
+    let per_sample = spent / done.max(1) as f64;
+    let left = b.total.as_secs_f64() - b.start.elapsed().as_secs_f64();
+    let affordable = (left.max(0.0) / per_sample.max(1e-12) * 0.97) as u64;
+    if needed > affordable {
+        let f = affordable as f64 / needed as f64;
+        for (t, &n) in next.iter_mut().zip(counts) {
+            *t = n + ((*t - n) as f64 * f) as u32;
+        }
+    }
+}
+
+/// The render's output from its tiles (the caller sets the time).
+fn collect(tiles: &[Tile], settings: &RenderSettings, rays: u64, rounds: u32) -> RenderOutput {
+    let (w, h) = (settings.width, settings.height);
     let image = Image {
         width: w,
         height: h,
-        pixels: per_pixel(&tiles, w, h, |a| a.value().as_vec4()),
+        pixels: per_pixel(tiles, w, h, |a| a.value().as_vec4()),
     };
-    let spp = per_pixel(&tiles, w, h, |a| a.n);
-    let sums = per_pixel(&tiles, w, h, |a| PixelSum {
+    let spp = per_pixel(tiles, w, h, |a| a.n);
+    let sums = per_pixel(tiles, w, h, |a| PixelSum {
         sum: a.sum,
         weight: a.w,
     });
+    let features = tiles.first().filter(|t| !t.features.is_empty()).map(|_| {
+        let acc = per_pixel_features(tiles, w, h);
+        feature_film::images(w, h, &acc)
+    });
     let stats = RenderStats {
-        rays: rays.into_inner(),
-        seconds: start.elapsed().as_secs_f64(),
+        rays,
+        seconds: 0.0,
         samples: spp.iter().map(|&n| n as u64).sum(),
         min_spp: spp.iter().copied().min().unwrap_or(0),
         max_spp: spp.iter().copied().max().unwrap_or(0),
@@ -522,6 +625,7 @@ pub fn render_full(
         stats,
         spp,
         sums,
+        features,
     }
 }
 
@@ -560,6 +664,18 @@ fn per_pixel<T: Copy + Default>(
         let tw = t.x1 - t.x0;
         for (k, a) in t.px.iter().enumerate() {
             out[(t.y0 + k / tw) * w + t.x0 + k % tw] = f(a);
+        }
+    }
+    out
+}
+
+/// The tiles' feature sums, row-major.
+fn per_pixel_features(tiles: &[Tile], w: usize, h: usize) -> Vec<FeatureAcc> {
+    let mut out = vec![FeatureAcc::default(); w * h];
+    for t in tiles {
+        let tw = t.x1 - t.x0;
+        for (k, a) in t.features.iter().enumerate() {
+            out[(t.y0 + k / tw) * w + t.x0 + k % tw] = *a;
         }
     }
     out

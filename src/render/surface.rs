@@ -21,6 +21,8 @@ pub struct SurfaceInteraction {
     pub unlit: bool,
     pub inst: u32,
     pub prim: u32,
+    /// Index of the material in `Scene::materials` (the material id feature image).
+    pub material: u32,
 }
 
 /// A texture at the coordinates of the set it reads.
@@ -109,6 +111,7 @@ impl SurfaceInteraction {
             unlit: mat.unlit,
             inst: hit.inst,
             prim: hit.prim,
+            material: mesh.material,
         }
     }
 }
@@ -133,6 +136,7 @@ impl SurfaceInteraction {
             unlit: mat.unlit,
             inst: hit.inst,
             prim: hit.prim,
+            material: s.material,
         }
     }
 }

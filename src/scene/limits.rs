@@ -40,12 +40,8 @@ pub fn toml_too_deep(text: &str) -> Option<usize> {
             line += 1;
         }
         match (quote, c) {
-            (Some('"'), '\\') => {
-                // An escape: the next character is part of the string (a newline still counts).
-                if chars.next() == Some('\n') {
-                    line += 1;
-                }
-            }
+            // An escape: the next character is part of the string (a newline still counts).
+            (Some('"'), '\\') => line += usize::from(chars.next() == Some('\n')),
             (Some(q), c) if c == q => quote = None,
             (Some(_), _) => {}
             (None, '"' | '\'') => quote = Some(c),

@@ -17,8 +17,11 @@ use glint::Scene;
 /// loaded, so that one input never costs seconds.
 const RENDER_TRIANGLES: usize = 20_000;
 
+/// A fuzzed path: bytes in, no panic out.
+pub type Target = fn(&[u8]);
+
 /// Every target by name (its folder under fuzz/regressions and fuzz/corpus).
-pub const TARGETS: &[(&str, fn(&[u8]))] = &[
+pub const TARGETS: &[(&str, Target)] = &[
     ("gltf_load", gltf),
     ("glb_load", glb),
     ("obj_load", obj),

@@ -115,7 +115,7 @@ pub fn load_str(path: &Path, text: &str) -> Result<Scene, LoadError> {
             ),
         ));
     }
-    let desc: Desc = toml::from_str(&text).map_err(|e| LoadError::new(path, e.to_string()))?;
+    let desc: Desc = toml::from_str(text).map_err(|e| LoadError::new(path, e.to_string()))?;
     let at = |span: Range<usize>, msg: String| {
         let line = text[..span.start.min(text.len())].lines().count().max(1);
         LoadError::new(path, format!("line {line}: {msg}"))
