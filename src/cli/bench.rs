@@ -149,87 +149,95 @@ pub struct RaysArgs {
 
 pub fn run(cmd: BenchCommand) -> Result<()> {
     match cmd {
-        BenchCommand::Convergence(a) => {
-            use crate::bench::convergence::{self, ConvergenceConfig};
-            use crate::film::denoise::DenoiseQuality;
-            let mut ladder = vec![1u32];
-            while ladder.last().unwrap() * 2 <= a.max_spp.max(1) {
-                ladder.push(ladder.last().unwrap() * 2);
-            }
-            let config = ConvergenceConfig {
-                basics: Basics {
-                    width: a.size.width.max(1),
-                    height: a.size.height.max(1),
-                    max_depth: a.max_depth,
-                    seed: a.seed,
-                    backend: a.backend,
-                    filter: a.filter,
-                    ..ConvergenceConfig::default().basics
-                },
-                filter_radius: a.filter_radius,
-                ladder,
-                ref_spp: a.ref_spp.max(1),
-                samplers: a.samplers,
-                adaptive_targets: a.adaptive_targets,
-                adaptive_min_spp: a.adaptive_min_spp.max(1),
-                adaptive_max_spp: a.adaptive_max_spp,
-                corner_targets: a.corner_targets,
-                denoise: a.denoise.then_some(DenoiseQuality::High),
-                ..Default::default()
-            };
-            let report = convergence::run(&a.input, &a.out, &config, !a.quiet)?;
-            super::print_out(&report.table())?;
-            Ok(())
-        }
-        BenchCommand::FastFailure(a) => {
-            use crate::bench::fastfail;
-            let (w, h) = (a.size.width.max(1), a.size.height.max(1));
-            let rows = fastfail::run(&a.input, w, h, a.rays)?;
-            let objects = a.input.load()?.instances.len();
-            super::print_out(&fastfail::table(&a.input, objects, &rows))
-        }
-        BenchCommand::Features(a) => {
-            use crate::bench::features;
-            let basics = Basics {
-                width: a.size.width.clamp(1, 8192),
-                height: a.size.height.clamp(1, 8192),
-                spp: a.spp.clamp(1, 1 << 16),
-                backend: a.backend,
-                ..Basics::default()
-            };
-            let opts = JobOptions {
-                defaults: basics,
-                flags: Overrides::all(basics),
-                ..JobOptions::default()
-            };
-            let (f, rows) = features::run(a.input.load()?, &opts, a.repeat)?;
-            super::print_out(&features::table(&a.input, &f, &rows))
-        }
-        BenchCommand::Rays(a) => {
-            let config = RaysConfig {
-                backends: if a.backend.is_empty() {
-                    let mut all = Backend::all_available();
-                    if all.contains(&Backend::Embree) {
-                        all.push(Backend::EmbreeFast);
-                    }
-                    all
-                } else {
-                    a.backend
-                },
-                kinds: a.kinds,
-                threads: a.threads,
-                width: a.size.width,
-                height: a.size.height,
-                repeat: a.repeat.max(1),
-                shutter: a.shutter,
-                frame_time: a.frame_time,
-            };
-            let report = rays::run(&a.input, &config)?;
-            super::print_out(&report.table())?;
-            if let Some(path) = a.json {
-                report.write_json(&path)?;
-            }
-            Ok(())
-        }
+        BenchCommand::Convergence(a) => convergence(a),
+        BenchCommand::FastFailure(a) => fast_failure(a),
+        BenchCommand::Features(a) => features(a),
+        BenchCommand::Rays(a) => rays(a),
     }
+}
+
+fn convergence(a: ConvergenceArgs) -> Result<()> {
+    use crate::bench::convergence::{self, ConvergenceConfig};
+    use crate::film::denoise::DenoiseQuality;
+    let mut ladder = vec![1u32];
+    while ladder.last().unwrap() * 2 <= a.max_spp.max(1) {
+        ladder.push(ladder.last().unwrap() * 2);
+    }
+    let config = ConvergenceConfig {
+        basics: Basics {
+            width: a.size.width.max(1),
+            height: a.size.height.max(1),
+            max_depth: a.max_depth,
+            seed: a.seed,
+            backend: a.backend,
+            filter: a.filter,
+            ..ConvergenceConfig::default().basics
+        },
+        filter_radius: a.filter_radius,
+        ladder,
+        ref_spp: a.ref_spp.max(1),
+        samplers: a.samplers,
+        adaptive_targets: a.adaptive_targets,
+        adaptive_min_spp: a.adaptive_min_spp.max(1),
+        adaptive_max_spp: a.adaptive_max_spp,
+        corner_targets: a.corner_targets,
+        denoise: a.denoise.then_some(DenoiseQuality::High),
+        ..Default::default()
+    };
+    let report = convergence::run(&a.input, &a.out, &config, !a.quiet)?;
+    super::print_out(&report.table())?;
+    Ok(())
+}
+
+fn fast_failure(a: FastFailureArgs) -> Result<()> {
+    use crate::bench::fastfail;
+    let (w, h) = (a.size.width.max(1), a.size.height.max(1));
+    let rows = fastfail::run(&a.input, w, h, a.rays)?;
+    let objects = a.input.load()?.instances.len();
+    super::print_out(&fastfail::table(&a.input, objects, &rows))
+}
+
+fn features(a: FeaturesArgs) -> Result<()> {
+    use crate::bench::features;
+    let basics = Basics {
+        width: a.size.width.clamp(1, 8192),
+        height: a.size.height.clamp(1, 8192),
+        spp: a.spp.clamp(1, 1 << 16),
+        backend: a.backend,
+        ..Basics::default()
+    };
+    let opts = JobOptions {
+        defaults: basics,
+        flags: Overrides::all(basics),
+        ..JobOptions::default()
+    };
+    let (f, rows) = features::run(a.input.load()?, &opts, a.repeat)?;
+    super::print_out(&features::table(&a.input, &f, &rows))
+}
+
+fn rays(a: RaysArgs) -> Result<()> {
+    let config = RaysConfig {
+        backends: if a.backend.is_empty() {
+            let mut all = Backend::all_available();
+            if all.contains(&Backend::Embree) {
+                all.push(Backend::EmbreeFast);
+            }
+            all
+        } else {
+            a.backend
+        },
+        kinds: a.kinds,
+        threads: a.threads,
+        width: a.size.width,
+        height: a.size.height,
+        repeat: a.repeat.max(1),
+        shutter: a.shutter,
+        frame_time: a.frame_time,
+    };
+    let report = rays::run(&a.input, &config)?;
+    super::print_out(&report.table())?;
+    if let Some(path) = a.json {
+        report.write_json(&path)?;
+    }
+    Ok(())
 }

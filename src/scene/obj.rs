@@ -274,6 +274,18 @@ fn convert_material(
         mat.specular = 1.0;
         mat.thickness = if matches!(illum, 6 | 7) { 1.0 } else { 0.0 };
     }
+    attach_textures(m, &mut mat, (search, files), scene, textures);
+    mat
+}
+
+/// The MTL's texture maps (map_Kd, a normal/bump map, map_Ke) on `mat`.
+fn attach_textures(
+    m: &tobj::Material,
+    mat: &mut Material,
+    (search, files): (&[PathBuf], &Files),
+    scene: &mut Scene,
+    textures: &mut HashMap<(PathBuf, bool), Option<u32>>,
+) {
     let label = format!("material '{}'", m.name);
     if let Some(t) = &m.diffuse_texture {
         mat.base_color_tex =
@@ -295,7 +307,6 @@ fn convert_material(
             mat.emissive = Vec3::ONE;
         }
     }
-    mat
 }
 
 /// Finds and reads a texture named in an MTL statement (which may carry options such as `-bm 1`

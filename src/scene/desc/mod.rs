@@ -363,25 +363,7 @@ fn add_objects(
             )));
         }
         // Meshes are looked up (and made solid) before resolving, which only reads them.
-        for name in mesh_names(&desc.csg) {
-            if solids.contains_key(&name) {
-                continue;
-            }
-            let Some(k) = scene.meshes.iter().position(|m| m.name == name) else {
-                return Err(fail(format!("no mesh named '{name}' in the assets")));
-            };
-            let mut mesh = scene.meshes[k].clone();
-            if let Some(inst) = scene.instances.iter().find(|i| i.mesh as usize == k) {
-                for p in &mut mesh.positions {
-                    *p = inst.to_world.transform_point3(*p);
-                }
-            }
-            let solid = mesh
-                .to_solid()
-                .map_err(|e| fail(format!("mesh '{name}': {e}")))?;
-            solids.insert(name, Arc::new(solid));
-            used.push(k as u32);
-        }
+        solid_operands(scene, &desc.csg, &mut solids, &mut used).map_err(fail)?;
         let root = desc
             .csg
             .resolve_with(
@@ -408,6 +390,34 @@ fn add_objects(
         scene.csg.push(object);
     }
     scene.instances.retain(|i| !used.contains(&i.mesh));
+    Ok(())
+}
+
+/// The meshes a CSG tree names as operands, made solid where their asset placed them (once per
+/// name); their mesh indices go into `used`.
+fn solid_operands(
+    scene: &Scene,
+    csg: &csg::NodeSpec,
+    solids: &mut HashMap<String, std::sync::Arc<crate::csg::SolidMesh>>,
+    used: &mut Vec<u32>,
+) -> Result<(), String> {
+    for name in mesh_names(csg) {
+        if solids.contains_key(&name) {
+            continue;
+        }
+        let Some(k) = scene.meshes.iter().position(|m| m.name == name) else {
+            return Err(format!("no mesh named '{name}' in the assets"));
+        };
+        let mut mesh = scene.meshes[k].clone();
+        if let Some(inst) = scene.instances.iter().find(|i| i.mesh as usize == k) {
+            for p in &mut mesh.positions {
+                *p = inst.to_world.transform_point3(*p);
+            }
+        }
+        let solid = mesh.to_solid().map_err(|e| format!("mesh '{name}': {e}"))?;
+        solids.insert(name, std::sync::Arc::new(solid));
+        used.push(k as u32);
+    }
     Ok(())
 }
 
