@@ -225,6 +225,7 @@ fn render_frames(
             ..Default::default()
         },
         default_lights: args.common.default_lights,
+        variant: args.common.variant.clone(),
         ..Default::default()
     };
     let job = Setup::new(scene, &opts)?.build()?;

@@ -14,6 +14,7 @@ pub mod mesh;
 pub mod obj;
 pub mod texture;
 pub mod transform;
+pub mod variants;
 
 use std::path::{Path, PathBuf};
 
@@ -28,6 +29,7 @@ pub use error::LoadError;
 pub use layers::MaterialLayers;
 pub use mesh::{Mesh, VertexAttrs};
 pub use texture::{Texture, Wrap};
+pub use variants::MaterialVariants;
 
 /// One placement of a mesh in the world.
 #[derive(Clone, Debug)]
@@ -470,6 +472,9 @@ pub struct SceneStats {
     pub lights: usize,
     pub cameras: usize,
     pub animations: usize,
+    /// The file's `extensionsUsed` and `extensionsRequired` (glTF files only).
+    pub extensions_used: Vec<String>,
+    pub extensions_required: Vec<String>,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -490,6 +495,8 @@ pub struct Scene {
     pub warnings: Vec<String>,
     /// Render settings from a scene file (empty for model files).
     pub settings: desc::FileSettings,
+    /// KHR_materials_variants: the material sets the meshes can be dressed in.
+    pub variants: MaterialVariants,
 }
 
 impl Scene {
@@ -585,6 +592,8 @@ impl Scene {
             self.materials.push(m);
         }
         self.textures.extend(other.textures);
+        self.variants
+            .append(&other.variants, mesh0, &material_index);
         self.meshes.extend(other.meshes.into_iter().map(|mut m| {
             m.material = material_index[m.material as usize];
             m
@@ -615,6 +624,19 @@ impl Scene {
             }
             self.instances.push(inst);
         }
+    }
+
+    /// Dresses the meshes in material variant `name` (KHR_materials_variants); an unknown name is an
+    /// error listing the known ones.
+    pub fn select_variant(&mut self, name: &str) -> Result<(), LoadError> {
+        let mut materials: Vec<u32> = self.meshes.iter().map(|m| m.material).collect();
+        self.variants
+            .apply(name, &mut materials)
+            .map_err(|e| LoadError::new(&self.source, e.to_string()))?;
+        for (m, k) in self.meshes.iter_mut().zip(materials) {
+            m.material = k;
+        }
+        Ok(())
     }
 
     pub fn mesh_of(&self, inst: u32) -> &Mesh {

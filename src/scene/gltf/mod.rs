@@ -18,6 +18,7 @@ pub mod meshopt;
 mod quiet_panic;
 #[cfg(test)]
 mod tests;
+mod variants;
 
 use std::collections::HashMap;
 use std::path::Path;
@@ -41,6 +42,7 @@ const SUPPORTED: &[&str] = &[
     "KHR_materials_specular",
     "KHR_materials_transmission",
     "KHR_materials_unlit",
+    "KHR_materials_variants",
     "KHR_materials_volume",
     "KHR_texture_transform",
     // Integer attributes (normalized or not) are what the accessor reader decodes anyway; the
@@ -78,7 +80,7 @@ fn load_inner(path: &Path, animation: usize) -> Result<Scene, GltfError> {
         let json = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&bytes);
         (json, None)
     };
-    let doc = document(json_bytes)?;
+    let (doc, required) = document(json_bytes)?;
     let mut buffers = accessor::read_buffers(&doc, base, blob)?;
     let doc = meshopt::decode_views(doc, &mut buffers)?;
     Loader {
@@ -95,11 +97,12 @@ fn load_inner(path: &Path, animation: usize) -> Result<Scene, GltfError> {
         skin_attrs: HashMap::new(),
         morph_attrs: HashMap::new(),
     }
-    .run()
+    .run(required)
 }
 
-/// The validated document of a JSON chunk, its required extensions checked against glint's.
-fn document(json: &[u8]) -> Result<gltf::Document, GltfError> {
+/// The validated document of a JSON chunk, its required extensions checked against glint's (and
+/// returned, since the document no longer lists them).
+fn document(json: &[u8]) -> Result<(gltf::Document, Vec<String>), GltfError> {
     let mut root: gltf::json::Root =
         gltf::json::deserialize::from_slice(json).map_err(GltfError::Json)?;
     if let Some(ext) = root
@@ -111,10 +114,10 @@ fn document(json: &[u8]) -> Result<gltf::Document, GltfError> {
     }
     // The crate's validation refuses required extensions it has no code for (KHR_materials_volume);
     // glint has checked them above.
-    root.extensions_required.clear();
+    let required = std::mem::take(&mut root.extensions_required);
     image::prefer_extension_sources(&mut root);
     let fallback = root.clone();
-    match gltf::Document::from_json(root) {
+    let doc = match gltf::Document::from_json(root) {
         Ok(doc) => Ok(doc),
         // POSITION's min/max are required by the spec but unused here: tolerate files without them.
         Err(gltf::Error::Validation(errs))
@@ -134,7 +137,8 @@ fn document(json: &[u8]) -> Result<gltf::Document, GltfError> {
             total: errs.len(),
         }),
         Err(e) => Err(GltfError::Document(e)),
-    }
+    }?;
+    Ok((doc, required))
 }
 
 struct Loader<'a> {
@@ -175,8 +179,10 @@ struct Placed {
 }
 
 impl Loader<'_> {
-    fn run(mut self) -> Result<Scene, GltfError> {
+    fn run(mut self, required: Vec<String>) -> Result<Scene, GltfError> {
         let doc = self.doc;
+        self.scene.stats.extensions_required = required;
+        self.scene.variants.names = variants::names(doc);
         for ext in doc.extensions_used() {
             if !SUPPORTED.contains(&ext) {
                 self.scene.warnings.push(format!(
@@ -390,8 +396,14 @@ impl Loader<'_> {
         stats.lights = doc.lights().map(|l| l.len()).unwrap_or(0);
         stats.cameras = doc.cameras().len();
         stats.animations = doc.animations().len();
+        stats.extensions_used = doc.extensions_used().map(str::to_owned).collect();
         self.scene.stats.triangles = self.scene.triangle_count();
     }
+}
+
+/// Whether glint implements extension `name` (for `glint info`).
+pub fn supports(name: &str) -> bool {
+    SUPPORTED.contains(&name)
 }
 
 /// How messages name a node.
