@@ -16,6 +16,7 @@ mod material;
 mod mesh;
 pub mod meshopt;
 mod quiet_panic;
+mod spec_gloss;
 #[cfg(test)]
 mod tests;
 mod variants;
@@ -38,6 +39,7 @@ const SUPPORTED: &[&str] = &[
     "KHR_materials_clearcoat",
     "KHR_materials_emissive_strength",
     "KHR_materials_ior",
+    "KHR_materials_pbrSpecularGlossiness",
     "KHR_materials_sheen",
     "KHR_materials_specular",
     "KHR_materials_transmission",
@@ -90,6 +92,7 @@ fn load_inner(path: &Path, animation: usize) -> Result<Scene, GltfError> {
         scene: Scene::default(),
         prims: HashMap::new(),
         textures: HashMap::new(),
+        gloss_textures: HashMap::new(),
         images: HashMap::new(),
         default_material: None,
         dropped: 0,
@@ -150,6 +153,9 @@ struct Loader<'a> {
     prims: HashMap<(usize, usize), Option<u32>>,
     /// (glTF texture, sRGB) -> index in `scene.textures`, or None when its image failed.
     textures: HashMap<(usize, bool), Option<u32>>,
+    /// (scene texture, glossiness factor bits) -> the roughness texture derived from a spec-gloss
+    /// texture.
+    gloss_textures: HashMap<(u32, u32), u32>,
     images: HashMap<usize, Option<Rc<image::Pixels>>>,
     default_material: Option<u32>,
     dropped: usize,
