@@ -197,13 +197,23 @@ impl Material {
         .flatten()
     }
 
+    /// Whether some texel emits. Features are derived from what the material can do at any texel: a
+    /// texture multiplies its factor by a value in [0, 1], so a factor with a texture may take any
+    /// value between 0 and the factor.
     pub fn is_emissive(&self) -> bool {
         self.emissive.max_element() > 0.0
     }
 
-    /// Whether light can pass through the surface (KHR_materials_transmission on a non-metal).
+    /// Whether light can pass through the surface somewhere (KHR_materials_transmission where it is
+    /// not a metal): metalness below 1 at some texel, which a metallic texture can give whatever the
+    /// factor.
     pub fn is_transmissive(&self) -> bool {
-        self.transmission > 0.0 && self.metallic < 1.0
+        self.transmission > 0.0 && self.can_be_dielectric()
+    }
+
+    /// Whether the metalness is below 1 at some texel.
+    pub fn can_be_dielectric(&self) -> bool {
+        self.metallic < 1.0 || self.metallic_roughness_tex.is_some()
     }
 
     /// Transmissive without a volume: the surface is a thin wall with no inside.
@@ -220,7 +230,8 @@ impl Material {
         -Vec3::new(c.x.ln(), c.y.ln(), c.z.ln()) / self.attenuation_distance
     }
 
-    /// Whether hits on this material need an alpha test (cutouts or blending).
+    /// Whether hits on this material need an alpha test (cutouts or blending) on any mesh; a mesh's
+    /// vertex colours can lower the alpha too (`Scene::mesh_needs_alpha_test`).
     pub fn needs_alpha_test(&self) -> bool {
         match self.alpha_mode {
             AlphaMode::Opaque => false,
@@ -699,6 +710,15 @@ impl Scene {
             .iter()
             .map(|i| self.meshes[i.mesh as usize].indices.len())
             .sum()
+    }
+
+    /// Whether hits on mesh `mesh` need an alpha test: its material cuts out or blends, and its alpha
+    /// can fall below 1 somewhere (the factor, a base colour texture, or COLOR_0's alpha).
+    pub fn mesh_needs_alpha_test(&self, mesh: u32) -> bool {
+        let m = &self.meshes[mesh as usize];
+        let mat = &self.materials[m.material as usize];
+        mat.needs_alpha_test()
+            || (mat.alpha_mode != AlphaMode::Opaque && m.colors.iter().any(|c| c.w < 1.0))
     }
 
     /// Whether a candidate hit counts, for materials with alpha cutouts or blending. Accelerators call
