@@ -9,6 +9,7 @@ pub mod error;
 pub mod features;
 pub mod generate;
 pub mod gltf;
+pub mod ktx2;
 pub mod layers;
 pub mod mesh;
 pub mod obj;

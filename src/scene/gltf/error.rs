@@ -258,4 +258,6 @@ pub enum ImageError {
     NoMimeType,
     #[error("neither a uri nor a buffer view")]
     NoSource,
+    #[error("KTX2: {0}")]
+    Ktx2(#[from] crate::scene::ktx2::Ktx2Error),
 }

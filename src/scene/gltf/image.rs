@@ -6,7 +6,7 @@ use std::rc::Rc;
 use super::accessor::{uri_decodes, view_bytes};
 use super::error::ImageError;
 use super::Loader;
-use crate::scene::{Texture, Wrap};
+use crate::scene::{ktx2, Texture, Wrap};
 
 /// Decoded image pixels, shared by the sRGB and linear variants of a texture.
 pub(super) struct Pixels {
@@ -89,6 +89,9 @@ impl Loader<'_> {
         match image.source() {
             gltf::image::Source::View { view, .. } => {
                 let bytes = view_bytes(&view, self.buffers)?;
+                if ktx2::is_ktx2(bytes) {
+                    return Ok(Pixels::from(ktx2::decode(bytes)?));
+                }
                 let img = image::load_from_memory(bytes)
                     .map_err(ImageError::Decode)?
                     .to_rgba8();
@@ -98,9 +101,12 @@ impl Loader<'_> {
                     rgba: img.pixels().map(|p| p.0).collect(),
                 })
             }
-            gltf::image::Source::Uri { uri, .. } => {
+            gltf::image::Source::Uri { uri, mime_type } => {
                 if !uri_decodes(uri) {
                     return Err(ImageError::MalformedUri);
+                }
+                if is_ktx2_uri(uri, mime_type) {
+                    return self.decode_ktx2_uri(uri);
                 }
                 let d = gltf::image::Data::from_source(image.source(), Some(self.base), &[])
                     .map_err(|e| match e {
@@ -117,8 +123,43 @@ impl Loader<'_> {
     }
 }
 
-/// Texture extensions whose `source` glint decodes (WebP through the `image` crate).
-const SOURCE_EXTENSIONS: [&str; 1] = ["EXT_texture_webp"];
+impl Loader<'_> {
+    /// A KTX2 image named by a URI (a file beside the glTF file or a data URI), decoded.
+    fn decode_ktx2_uri(&self, uri: &str) -> Result<Pixels, ImageError> {
+        let source = gltf::buffer::Source::Uri(uri);
+        let bytes = gltf::buffer::Data::from_source_and_blob(source, Some(self.base), &mut None)
+            .map_err(|e| match e {
+                gltf::Error::Io(e) => ImageError::Io(e),
+                e => ImageError::Source(e),
+            })?;
+        Ok(Pixels::from(ktx2::decode(&bytes.0)?))
+    }
+}
+
+/// Whether a URI image is KTX2: by its MIME type or its file name. Files point textures straight
+/// at .ktx2 images without KHR_texture_basisu too (the shared AnisotropyBarnLamp does).
+fn is_ktx2_uri(uri: &str, mime_type: Option<&str>) -> bool {
+    mime_type == Some("image/ktx2")
+        || uri.starts_with("data:image/ktx2")
+        || uri
+            .rsplit('.')
+            .next()
+            .is_some_and(|e| e.eq_ignore_ascii_case("ktx2"))
+}
+
+impl From<ktx2::Rgba8> for Pixels {
+    fn from(img: ktx2::Rgba8) -> Self {
+        Self {
+            width: img.width,
+            height: img.height,
+            rgba: img.pixels,
+        }
+    }
+}
+
+/// Texture extensions whose `source` glint decodes (WebP through the `image` crate, KTX2 through
+/// `scene::ktx2`).
+const SOURCE_EXTENSIONS: [&str; 2] = ["EXT_texture_webp", "KHR_texture_basisu"];
 
 /// Points every texture at the image of an extension glint decodes, which the spec says a client
 /// that supports the extension uses instead of (or when there is no) core `source`.

@@ -54,6 +54,7 @@ const SUPPORTED: &[&str] = &[
     "EXT_meshopt_compression",
     "KHR_meshopt_compression",
     "EXT_texture_webp",
+    "KHR_texture_basisu",
 ];
 
 /// One morph target's position and normal displacements.
