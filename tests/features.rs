@@ -12,7 +12,9 @@ use glam::{Mat4, Vec3, Vec4};
 use glint::accel::Backend;
 use glint::render::RenderSettings;
 use glint::scene::features::Features;
-use glint::scene::{AlphaMode, Camera, Instance, Light, Material, Mesh, Scene, TexRef, Texture, Wrap};
+use glint::scene::{
+    AlphaMode, Camera, Instance, Light, Material, Mesh, Scene, TexRef, Texture, Wrap,
+};
 
 /// A horizontal square of half-size `s` at height `y`, facing up.
 fn quad(y: f32, s: f32, material: u32) -> Mesh {
@@ -80,7 +82,10 @@ fn centre_mean(scene: &Arc<Scene>) -> Vec3 {
         ..Default::default()
     };
     let img = common::render_with(scene, &camera, Backend::Bvh, &settings);
-    (0..25).map(|i| img.get(i % 5, i / 5).truncate()).sum::<Vec3>() / 25.0
+    (0..25)
+        .map(|i| img.get(i % 5, i / 5).truncate())
+        .sum::<Vec3>()
+        / 25.0
 }
 
 #[test]
@@ -122,17 +127,26 @@ fn transmission_roughness_test_reports_transmission_under_verbose() {
     let Some(shared) = common::shared_assets() else {
         return;
     };
-    let path = shared.join("gltf/TransmissionRoughnessTest/glTF-Binary/TransmissionRoughnessTest.glb");
+    let path =
+        shared.join("gltf/TransmissionRoughnessTest/glTF-Binary/TransmissionRoughnessTest.glb");
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("t.png");
     let o = std::process::Command::new(env!("CARGO_BIN_EXE_glint"))
-        .args(["render", path.to_str().unwrap(), "-o", out.to_str().unwrap()])
+        .args([
+            "render",
+            path.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ])
         .args(["--width", "8", "--height", "8", "--spp", "1", "--verbose"])
         .output()
         .unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "{err}");
-    let line = err.lines().find(|l| l.contains("uses:")).expect("a features line");
+    let line = err
+        .lines()
+        .find(|l| l.contains("uses:"))
+        .expect("a features line");
     let (uses, skips) = line.split_once("skips:").unwrap();
     // Its glass takes metallicFactor 1 (the default) times textures whose B is 0; thick (a volume).
     assert!(uses.contains("transmission"), "{line}");
@@ -159,6 +173,9 @@ fn vertex_alpha_cuts_out_a_masked_mesh() {
     for backend in common::render_backends() {
         let accel = glint::accel::build(scene.clone(), backend).unwrap();
         let ray = glint::geometry::Ray::new(Vec3::Y * 2.0, -Vec3::Y);
-        assert!(accel.intersect(&ray).is_none(), "{backend}: alpha 0 is cut out");
+        assert!(
+            accel.intersect(&ray).is_none(),
+            "{backend}: alpha 0 is cut out"
+        );
     }
 }

@@ -86,12 +86,28 @@ fn the_render_shows_the_chosen_variant() {
     // The halves hold the background too; against the plain (grey) render, the left quad turns red
     // under warm and blue under cool.
     let (w, c) = (warm[0] - plain[0], cool[0] - plain[0]);
-    assert!(w.x > 0.02 && w.z < -0.02, "warm left {:?} vs {:?}", warm[0], plain[0]);
-    assert!(c.z > 0.02 && c.x < -0.02, "cool left {:?} vs {:?}", cool[0], plain[0]);
-    // The right quad is gold in both warm and cool (the same pixels), yellower than plain grey.
-    assert_eq!(warm[1], cool[1]);
+    assert!(
+        w.x > 0.02 && w.z < -0.02,
+        "warm left {:?} vs {:?}",
+        warm[0],
+        plain[0]
+    );
+    assert!(
+        c.z > 0.02 && c.x < -0.02,
+        "cool left {:?} vs {:?}",
+        cool[0],
+        plain[0]
+    );
+    // The right quad is gold in both warm and cool, yellower than plain grey.
+    // Light bounced off the left quad reaches it, so the halves agree to a little.
+    assert!((warm[1] - cool[1]).abs().max_element() < 0.01 * warm[1].max_element());
     let g = warm[1] - plain[1];
-    assert!(g.x - g.z > 0.02, "gold right {:?} vs {:?}", warm[1], plain[1]);
+    assert!(
+        g.x - g.z > 0.02,
+        "gold right {:?} vs {:?}",
+        warm[1],
+        plain[1]
+    );
 }
 
 #[test]
@@ -152,9 +168,10 @@ fn render_and_turntable_take_variant_and_refuse_unknown_names() {
     let dir = tempfile::tempdir().unwrap();
     let input = variants_asset();
     let still = dir.path().join("x.png");
-    let frames = dir.path().join("frames");
     let small = ["--width", "16", "--height", "8", "--spp", "1", "--quiet"];
     let run = |cmd: &str, variant: &str| {
+        // Each sequence in its own folder: a finished one is not loaded again.
+        let frames = dir.path().join(format!("frames-{variant}"));
         let out = if cmd == "turntable" { &frames } else { &still };
         let mut args = vec![cmd, input.to_str().unwrap(), "-o", out.to_str().unwrap()];
         args.extend(small);

@@ -205,7 +205,13 @@ impl Loader<'_> {
     }
 
     /// A textureInfo inside an extension's JSON (`index`, `texCoord`, KHR_texture_transform).
-    pub(super) fn json_tex(&mut self, v: &Value, key: &str, srgb: bool, label: &str) -> Option<TexRef> {
+    pub(super) fn json_tex(
+        &mut self,
+        v: &Value,
+        key: &str,
+        srgb: bool,
+        label: &str,
+    ) -> Option<TexRef> {
         let t = v.get(key)?;
         let Some(index) = t.get("index").and_then(Value::as_u64) else {
             self.scene

@@ -31,7 +31,11 @@ fn dielectric_f0(ior: f32) -> f32 {
 /// The numbers of a JSON array of `N` components, or `default`.
 fn array<const N: usize>(v: &Value, key: &str, default: [f32; N]) -> [f32; N] {
     let mut out = default;
-    if let Some(a) = v.get(key).and_then(Value::as_array).filter(|a| a.len() == N) {
+    if let Some(a) = v
+        .get(key)
+        .and_then(Value::as_array)
+        .filter(|a| a.len() == N)
+    {
         for (o, x) in out.iter_mut().zip(a) {
             if let Some(f) = x.as_f64() {
                 *o = f as f32;
@@ -45,7 +49,8 @@ impl Loader<'_> {
     /// Replaces the metallic-roughness parameters of `mat` by those of the spec-gloss object `sg`.
     pub(super) fn spec_gloss(&mut self, sg: &Value, mat: &mut Material, label: &str) {
         let diffuse = Vec4::from(array(sg, "diffuseFactor", [1.0; 4])).clamp(Vec4::ZERO, Vec4::ONE);
-        let specular = Vec3::from(array(sg, "specularFactor", [1.0; 3])).clamp(Vec3::ZERO, Vec3::ONE);
+        let specular =
+            Vec3::from(array(sg, "specularFactor", [1.0; 3])).clamp(Vec3::ZERO, Vec3::ONE);
         let gloss = sg
             .get("glossinessFactor")
             .and_then(Value::as_f64)
