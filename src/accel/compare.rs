@@ -113,7 +113,9 @@ fn on_alpha_edge(scene: &Scene, hit: &Option<Hit>) -> bool {
         let mesh = scene.mesh_of(h.inst);
         let mat = &scene.materials[mesh.material as usize];
         match mat.alpha_mode {
-            AlphaMode::Mask(cutoff) if mat.needs_alpha_test() => {
+            AlphaMode::Mask(cutoff)
+                if scene.mesh_needs_alpha_test(scene.instances[h.inst as usize].mesh) =>
+            {
                 let alpha = scene.base_color(mat, mesh.uv_at(h.prim, h.u, h.v)).w;
                 (alpha - cutoff).abs() < ALPHA_MARGIN
             }

@@ -452,7 +452,7 @@ impl EmbreeAccel {
             if mesh.indices.is_empty() || mesh.positions.is_empty() {
                 continue; // nothing to hit; Embree would reject empty buffers
             }
-            let alpha = scene.material_of_mesh(inst.mesh).needs_alpha_test();
+            let alpha = scene.mesh_needs_alpha_test(inst.mesh);
             self.filtered |= alpha;
             let id = u32::try_from(index)
                 .map_err(|_| AccelError::Embree("too many instances".into()))?;

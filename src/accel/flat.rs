@@ -99,7 +99,7 @@ pub fn flatten(scene: &Scene) -> (Vec<[Vec3; 3]>, Vec<TriId>) {
             continue;
         }
         let mesh = &scene.meshes[inst.mesh as usize];
-        let alpha = scene.materials[mesh.material as usize].needs_alpha_test();
+        let alpha = scene.mesh_needs_alpha_test(inst.mesh);
         let world: Vec<Vec3> = mesh
             .positions
             .par_iter()

@@ -36,7 +36,7 @@ impl MovingSet {
             .filter_map(|(i, inst)| {
                 let motion = inst.motion.as_ref()?;
                 let mesh = &scene.meshes[inst.mesh as usize];
-                let alpha = scene.materials[mesh.material as usize].needs_alpha_test();
+                let alpha = scene.mesh_needs_alpha_test(inst.mesh);
                 let tris: Vec<_> = (0..mesh.indices.len() as u32)
                     .map(|p| mesh.triangle(p))
                     .collect();

@@ -53,6 +53,9 @@ pub struct Args {
     /// The default light rig (environment + key light), placed relative to the (frame-0) camera.
     #[arg(long, value_enum, default_value_t = DefaultLights::Auto)]
     pub default_lights: DefaultLights,
+    /// Material variant to render (KHR_materials_variants; `glint info` lists a file's variants).
+    #[arg(long, value_name = "NAME")]
+    pub variant: Option<String>,
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,

@@ -111,7 +111,37 @@ fn info_command(input: &std::path::Path) -> Result<()> {
             b.max.to_array()
         );
     }
+    text += &extensions_text(s);
+    if !scene.variants.is_empty() {
+        text += &format!(
+            "  variants    {} (--variant NAME)\n",
+            scene.variants.names.join(", ")
+        );
+    }
     print_out(&text)
+}
+
+/// The file's used and required extensions, each marked with whether glint reads it.
+fn extensions_text(s: &crate::scene::SceneStats) -> String {
+    let mark = |e: &String| {
+        let how = if crate::scene::gltf::supports(e) {
+            "supported"
+        } else {
+            "not supported"
+        };
+        format!("{e} ({how})")
+    };
+    let mut text = String::new();
+    for (label, list) in [
+        ("extensions used    ", &s.extensions_used),
+        ("extensions required", &s.extensions_required),
+    ] {
+        if !list.is_empty() {
+            let items: Vec<String> = list.iter().map(mark).collect();
+            text += &format!("  {label} {}\n", items.join(", "));
+        }
+    }
+    text
 }
 
 /// Writes to stdout; a reader that went away (`glint info x | head`) is not an error.

@@ -148,6 +148,7 @@ impl RenderArgs {
             default_lights: self.common.default_lights,
             lens: self.lens.options(),
             time: self.time.options(),
+            variant: self.common.variant.clone(),
         }
     }
 }

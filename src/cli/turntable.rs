@@ -252,6 +252,7 @@ fn render_frames(args: &TurntableArgs, plan: &Plan) -> Result<()> {
             ..Default::default()
         },
         default_lights: args.common.default_lights,
+        variant: args.common.variant.clone(),
         ..Default::default()
     };
     let job = Setup::new(scene, &opts)?.build()?;

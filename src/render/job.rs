@@ -107,6 +107,9 @@ pub struct JobOptions {
     pub default_lights: DefaultLights,
     pub lens: LensOptions,
     pub time: Time,
+    /// KHR_materials_variants: the material variant to dress the meshes in (an error when the scene
+    /// has no variant of that name).
+    pub variant: Option<String>,
 }
 
 impl JobOptions {
@@ -162,6 +165,9 @@ impl Setup {
         start: Instant,
     ) -> Result<Setup, JobError> {
         let time = opts.time;
+        if let Some(v) = &opts.variant {
+            scene.select_variant(v)?;
+        }
         animation::pose(&mut scene, time.frame_time, time.shutter);
         let load_seconds = start.elapsed().as_secs_f64();
         let file = file_overrides(&scene.settings, &scene.source, &opts.flags)?;

@@ -1,8 +1,8 @@
-//! Texture images decoded from bytes (PNG, JPEG, WebP, GIF; guessed from the content) into RGBA8,
+//! Texture images decoded from bytes (PNG, JPEG, WebP, GIF, KTX2; told by their content) into RGBA8,
 //! with the pixel cap checked on the header before any pixel buffer is allocated.
 //!
 //! Every loader that reads a texture (glTF embedded, data-URI or file images, OBJ/MTL maps) comes
-//! through here, and so does the fuzzing; a new format (KTX2) is one more arm in `decode_rgba8`.
+//! through here, and so does the fuzzing; a new format is one more arm in `decode_rgba8`.
 
 use std::io::Cursor;
 
@@ -12,7 +12,7 @@ use std::io::Cursor;
 pub const MAX_IMAGE_PIXELS: u64 = 1 << 26;
 
 /// An RGBA8 image, rows top first.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Rgba8 {
     pub width: usize,
     pub height: usize,
@@ -27,6 +27,8 @@ pub enum DecodeError {
     Image(#[from] image::ImageError),
     #[error("cannot decode image: {0}")]
     Io(#[from] std::io::Error),
+    #[error("KTX2: {0}")]
+    Ktx2(#[from] super::ktx2::Ktx2Error),
 }
 
 /// Refuses an image size over the cap (also what the environment map readers call).
@@ -39,6 +41,11 @@ pub fn check_size(width: u64, height: u64) -> Result<(), DecodeError> {
 
 /// Decodes an image file's bytes into RGBA8 (grey replicated, 16-bit and float quantised).
 pub fn decode_rgba8(bytes: &[u8]) -> Result<Rgba8, DecodeError> {
+    if super::ktx2::is_ktx2(bytes) {
+        let img = super::ktx2::decode(bytes)?;
+        check_size(img.width as u64, img.height as u64)?;
+        return Ok(img);
+    }
     let reader = || image::ImageReader::new(Cursor::new(bytes)).with_guessed_format();
     let (w, h) = reader()?.into_dimensions()?;
     check_size(w.into(), h.into())?;

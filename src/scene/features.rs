@@ -59,7 +59,7 @@ impl Features {
                 .iter()
                 .any(|m| m.is_transmissive() && m.is_thin_walled()),
             textures: !scene.textures.is_empty(),
-            alpha: mats.iter().any(|m| m.needs_alpha_test()),
+            alpha: (0..scene.meshes.len() as u32).any(|m| scene.mesh_needs_alpha_test(m)),
             emissive_triangles: scene
                 .instances
                 .iter()

@@ -10,6 +10,7 @@ pub mod error;
 pub mod features;
 pub mod generate;
 pub mod gltf;
+pub mod ktx2;
 pub mod layers;
 pub mod limits;
 pub mod mesh;
@@ -17,6 +18,7 @@ pub mod obj;
 mod quiet_panic;
 pub mod texture;
 pub mod transform;
+pub mod variants;
 
 use std::path::{Path, PathBuf};
 
@@ -31,6 +33,7 @@ pub use error::LoadError;
 pub use layers::MaterialLayers;
 pub use mesh::{Mesh, VertexAttrs};
 pub use texture::{Texture, Wrap};
+pub use variants::MaterialVariants;
 
 /// One placement of a mesh in the world.
 #[derive(Clone, Debug)]
@@ -198,13 +201,23 @@ impl Material {
         .flatten()
     }
 
+    /// Whether some texel emits. Features are derived from what the material can do at any texel: a
+    /// texture multiplies its factor by a value in [0, 1], so a factor with a texture may take any
+    /// value between 0 and the factor.
     pub fn is_emissive(&self) -> bool {
         self.emissive.max_element() > 0.0
     }
 
-    /// Whether light can pass through the surface (KHR_materials_transmission on a non-metal).
+    /// Whether light can pass through the surface somewhere (KHR_materials_transmission where it is
+    /// not a metal): metalness below 1 at some texel, which a metallic texture can give whatever the
+    /// factor.
     pub fn is_transmissive(&self) -> bool {
-        self.transmission > 0.0 && self.metallic < 1.0
+        self.transmission > 0.0 && self.can_be_dielectric()
+    }
+
+    /// Whether the metalness is below 1 at some texel.
+    pub fn can_be_dielectric(&self) -> bool {
+        self.metallic < 1.0 || self.metallic_roughness_tex.is_some()
     }
 
     /// Transmissive without a volume: the surface is a thin wall with no inside.
@@ -221,7 +234,8 @@ impl Material {
         -Vec3::new(c.x.ln(), c.y.ln(), c.z.ln()) / self.attenuation_distance
     }
 
-    /// Whether hits on this material need an alpha test (cutouts or blending).
+    /// Whether hits on this material need an alpha test (cutouts or blending) on any mesh; a mesh's
+    /// vertex colours can lower the alpha too (`Scene::mesh_needs_alpha_test`).
     pub fn needs_alpha_test(&self) -> bool {
         match self.alpha_mode {
             AlphaMode::Opaque => false,
@@ -473,6 +487,9 @@ pub struct SceneStats {
     pub lights: usize,
     pub cameras: usize,
     pub animations: usize,
+    /// The file's `extensionsUsed` and `extensionsRequired` (glTF files only).
+    pub extensions_used: Vec<String>,
+    pub extensions_required: Vec<String>,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -493,6 +510,8 @@ pub struct Scene {
     pub warnings: Vec<String>,
     /// Render settings from a scene file (empty for model files).
     pub settings: desc::FileSettings,
+    /// KHR_materials_variants: the material sets the meshes can be dressed in.
+    pub variants: MaterialVariants,
 }
 
 impl Scene {
@@ -591,6 +610,8 @@ impl Scene {
             self.materials.push(m);
         }
         self.textures.extend(other.textures);
+        self.variants
+            .append(&other.variants, mesh0, &material_index);
         self.meshes.extend(other.meshes.into_iter().map(|mut m| {
             m.material = material_index[m.material as usize];
             m
@@ -621,6 +642,19 @@ impl Scene {
             }
             self.instances.push(inst);
         }
+    }
+
+    /// Dresses the meshes in material variant `name` (KHR_materials_variants); an unknown name is an
+    /// error listing the known ones.
+    pub fn select_variant(&mut self, name: &str) -> Result<(), LoadError> {
+        let mut materials: Vec<u32> = self.meshes.iter().map(|m| m.material).collect();
+        self.variants
+            .apply(name, &mut materials)
+            .map_err(|e| LoadError::new(&self.source, e.to_string()))?;
+        for (m, k) in self.meshes.iter_mut().zip(materials) {
+            m.material = k;
+        }
+        Ok(())
     }
 
     pub fn mesh_of(&self, inst: u32) -> &Mesh {
@@ -698,6 +732,15 @@ impl Scene {
             })
             .fold(0usize, usize::saturating_add);
         limits::too_large(self.instances.len(), triangles)
+    }
+
+    /// Whether hits on mesh `mesh` need an alpha test: its material cuts out or blends, and its alpha
+    /// can fall below 1 somewhere (the factor, a base colour texture, or COLOR_0's alpha).
+    pub fn mesh_needs_alpha_test(&self, mesh: u32) -> bool {
+        let m = &self.meshes[mesh as usize];
+        let mat = &self.materials[m.material as usize];
+        mat.needs_alpha_test()
+            || (mat.alpha_mode != AlphaMode::Opaque && m.colors.iter().any(|c| c.w < 1.0))
     }
 
     /// Whether a candidate hit counts, for materials with alpha cutouts or blending. Accelerators call

@@ -91,6 +91,9 @@ struct AssetDesc {
     /// The asset's own material names mapped to scene-file materials.
     #[serde(default)]
     materials: HashMap<String, Spanned<String>>,
+    /// KHR_materials_variants: the asset's material variant to dress it in (before `materials`
+    /// re-dresses by name).
+    variant: Option<Spanned<String>>,
 }
 
 /// A message about the byte range `span` of the file's text, as an error naming its line.
@@ -242,6 +245,14 @@ fn add_asset(
         None => start,
     };
     super::animation::pose(&mut asset, frame_time, shutter);
+    if let Some(v) = &a.variant {
+        asset.select_variant(v.get_ref()).map_err(|e| {
+            at(
+                v.span(),
+                format!("asset '{}': {}", rel.display(), e.message),
+            )
+        })?;
+    }
     // Overrides replace the asset's materials before they join the scene's list.
     let all = a.material.as_ref().map(lookup).transpose()?;
     let mut remap: HashMap<usize, u32> = HashMap::new();

@@ -106,8 +106,9 @@ impl Loader<'_> {
     }
 }
 
-/// Texture extensions whose `source` glint decodes (WebP through the `image` crate).
-const SOURCE_EXTENSIONS: [&str; 1] = ["EXT_texture_webp"];
+/// Texture extensions whose `source` glint decodes (WebP through the `image` crate, KTX2 through
+/// `scene::ktx2`).
+const SOURCE_EXTENSIONS: [&str; 2] = ["EXT_texture_webp", "KHR_texture_basisu"];
 
 /// Points every texture at the image of an extension glint decodes, which the spec says a client
 /// that supports the extension uses instead of (or when there is no) core `source`.

@@ -161,6 +161,9 @@ impl Loader<'_> {
         }
         // Without KHR_materials_volume a transmissive surface is thin-walled (thickness 0). The
         // thickness texture only serves rasterisers; a path tracer measures the real thickness.
+        if let Some(sg) = m.extension_value("KHR_materials_pbrSpecularGlossiness") {
+            self.spec_gloss(sg, &mut mat, &label);
+        }
         if let Some(v) = m.volume() {
             mat.thickness = v.thickness_factor().max(0.0);
             mat.attenuation_color = Vec3::from(v.attenuation_color()).clamp(Vec3::ZERO, Vec3::ONE);
@@ -202,7 +205,13 @@ impl Loader<'_> {
     }
 
     /// A textureInfo inside an extension's JSON (`index`, `texCoord`, KHR_texture_transform).
-    fn json_tex(&mut self, v: &Value, key: &str, srgb: bool, label: &str) -> Option<TexRef> {
+    pub(super) fn json_tex(
+        &mut self,
+        v: &Value,
+        key: &str,
+        srgb: bool,
+        label: &str,
+    ) -> Option<TexRef> {
         let t = v.get(key)?;
         let Some(index) = t.get("index").and_then(Value::as_u64) else {
             self.scene

@@ -38,6 +38,7 @@ impl Loader<'_> {
         let out = built.map(|b| {
             self.scene.meshes.push(b.mesh);
             let index = (self.scene.meshes.len() - 1) as u32;
+            self.variant_mappings(prim, index, &label);
             if let Some(attrs) = b.skin {
                 self.skin_attrs.insert(index, attrs);
             }

@@ -16,8 +16,10 @@ mod light;
 mod material;
 mod mesh;
 pub mod meshopt;
+mod spec_gloss;
 #[cfg(test)]
 mod tests;
+mod variants;
 
 use std::collections::HashMap;
 use std::path::Path;
@@ -37,10 +39,12 @@ const SUPPORTED: &[&str] = &[
     "KHR_materials_clearcoat",
     "KHR_materials_emissive_strength",
     "KHR_materials_ior",
+    "KHR_materials_pbrSpecularGlossiness",
     "KHR_materials_sheen",
     "KHR_materials_specular",
     "KHR_materials_transmission",
     "KHR_materials_unlit",
+    "KHR_materials_variants",
     "KHR_materials_volume",
     "KHR_texture_transform",
     // Integer attributes (normalized or not) are what the accessor reader decodes anyway; the
@@ -50,6 +54,7 @@ const SUPPORTED: &[&str] = &[
     "EXT_meshopt_compression",
     "KHR_meshopt_compression",
     "EXT_texture_webp",
+    "KHR_texture_basisu",
 ];
 
 /// One morph target's position and normal displacements.
@@ -85,7 +90,7 @@ fn load_inner(path: &Path, bytes: &[u8], animation: usize) -> Result<Scene, Gltf
         let json = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
         (json, None)
     };
-    let doc = document(json_bytes)?;
+    let (doc, required) = document(json_bytes)?;
     let mut buffers = accessor::read_buffers(&doc, base, blob)?;
     let doc = meshopt::decode_views(doc, &mut buffers)?;
     let buffers = buffers::Buffers::new(buffers);
@@ -96,6 +101,7 @@ fn load_inner(path: &Path, bytes: &[u8], animation: usize) -> Result<Scene, Gltf
         scene: Scene::default(),
         prims: HashMap::new(),
         textures: HashMap::new(),
+        gloss_textures: HashMap::new(),
         images: HashMap::new(),
         default_material: None,
         dropped: 0,
@@ -103,11 +109,12 @@ fn load_inner(path: &Path, bytes: &[u8], animation: usize) -> Result<Scene, Gltf
         skin_attrs: HashMap::new(),
         morph_attrs: HashMap::new(),
     }
-    .run()
+    .run(required)
 }
 
-/// The validated document of a JSON chunk, its required extensions checked against glint's.
-fn document(json: &[u8]) -> Result<gltf::Document, GltfError> {
+/// The validated document of a JSON chunk, its required extensions checked against glint's (and
+/// returned, since the document no longer lists them).
+fn document(json: &[u8]) -> Result<(gltf::Document, Vec<String>), GltfError> {
     let mut root: gltf::json::Root =
         gltf::json::deserialize::from_slice(json).map_err(GltfError::Json)?;
     if let Some(ext) = root
@@ -119,10 +126,10 @@ fn document(json: &[u8]) -> Result<gltf::Document, GltfError> {
     }
     // The crate's validation refuses required extensions it has no code for (KHR_materials_volume);
     // glint has checked them above.
-    root.extensions_required.clear();
+    let required = std::mem::take(&mut root.extensions_required);
     image::prefer_extension_sources(&mut root);
     let fallback = root.clone();
-    match gltf::Document::from_json(root) {
+    let doc = match gltf::Document::from_json(root) {
         Ok(doc) => Ok(doc),
         // POSITION's min/max are required by the spec but unused here: tolerate files without them.
         Err(gltf::Error::Validation(errs))
@@ -142,7 +149,8 @@ fn document(json: &[u8]) -> Result<gltf::Document, GltfError> {
             total: errs.len(),
         }),
         Err(e) => Err(GltfError::Document(e)),
-    }
+    }?;
+    Ok((doc, required))
 }
 
 struct Loader<'a> {
@@ -154,6 +162,9 @@ struct Loader<'a> {
     prims: HashMap<(usize, usize), Option<u32>>,
     /// (glTF texture, sRGB) -> index in `scene.textures`, or None when its image failed.
     textures: HashMap<(usize, bool), Option<u32>>,
+    /// (scene texture, glossiness factor bits) -> the roughness texture derived from a spec-gloss
+    /// texture.
+    gloss_textures: HashMap<(u32, u32), u32>,
     images: HashMap<usize, Option<Rc<image::Pixels>>>,
     default_material: Option<u32>,
     dropped: usize,
@@ -183,8 +194,10 @@ struct Placed {
 }
 
 impl Loader<'_> {
-    fn run(mut self) -> Result<Scene, GltfError> {
+    fn run(mut self, required: Vec<String>) -> Result<Scene, GltfError> {
         let doc = self.doc;
+        self.scene.stats.extensions_required = required;
+        self.scene.variants.names = variants::names(doc);
         for ext in doc.extensions_used() {
             if !SUPPORTED.contains(&ext) {
                 self.scene.warnings.push(format!(
@@ -408,8 +421,14 @@ impl Loader<'_> {
         stats.lights = doc.lights().map(|l| l.len()).unwrap_or(0);
         stats.cameras = doc.cameras().len();
         stats.animations = doc.animations().len();
+        stats.extensions_used = doc.extensions_used().map(str::to_owned).collect();
         self.scene.stats.triangles = self.scene.triangle_count();
     }
+}
+
+/// Whether glint implements extension `name` (for `glint info`).
+pub fn supports(name: &str) -> bool {
+    SUPPORTED.contains(&name)
 }
 
 /// How messages name a node.
