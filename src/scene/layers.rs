@@ -1,5 +1,5 @@
 //! The glTF material extensions layered over the metallic-roughness base: KHR_materials_specular's
-//! colour and textures, KHR_materials_clearcoat and KHR_materials_sheen, as factors and textures.
+//! colour and textures, clearcoat, sheen, anisotropy, iridescence and diffuse transmission.
 
 use glam::Vec3;
 
@@ -30,6 +30,17 @@ pub struct Sheen {
     pub roughness_tex: Option<TexRef>,
 }
 
+/// KHR_materials_anisotropy: the base's specular roughness raised along a direction in the surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Anisotropy {
+    /// anisotropyStrength, times the B channel of `texture`.
+    pub strength: f32,
+    /// anisotropyRotation (radians, counter-clockwise from the tangent).
+    pub rotation: f32,
+    /// Direction in tangent space in RG (mapped from [0, 1] to [-1, 1]), strength in B; linear.
+    pub texture: Option<TexRef>,
+}
+
 /// Everything of a material beyond the metallic-roughness base; the default adds nothing.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MaterialLayers {
@@ -41,6 +52,7 @@ pub struct MaterialLayers {
     pub specular_color_tex: Option<TexRef>,
     pub clearcoat: Option<Clearcoat>,
     pub sheen: Option<Sheen>,
+    pub anisotropy: Option<Anisotropy>,
 }
 
 impl Default for MaterialLayers {
@@ -51,6 +63,7 @@ impl Default for MaterialLayers {
             specular_color_tex: None,
             clearcoat: None,
             sheen: None,
+            anisotropy: None,
         }
     }
 }
@@ -64,6 +77,9 @@ impl MaterialLayers {
         }
         if let Some(s) = &mut self.sheen {
             v.extend([&mut s.color_tex, &mut s.roughness_tex]);
+        }
+        if let Some(a) = &mut self.anisotropy {
+            v.push(&mut a.texture);
         }
         v.into_iter()
     }

@@ -7,7 +7,7 @@ use std::f32::consts::FRAC_1_PI;
 use glam::{Vec2, Vec3};
 
 use super::fresnel::{fresnel_exact, schlick};
-use super::microfacet::{g1, g2, ggx_d, sample_vndf};
+use super::microfacet::Ggx;
 use super::{choice_probabilities, luminance, Bsdf, BsdfSample};
 use crate::sample::warp::cosine_hemisphere;
 
@@ -23,6 +23,15 @@ impl Bsdf {
     /// Whether every lobe of the base is a delta lobe.
     pub(super) fn base_is_delta(&self) -> bool {
         self.alpha == 0.0 && (self.metallic == 1.0 || self.transmission == 1.0)
+    }
+
+    /// The specular lobes' microfacet distribution (anisotropic along the frame's tangent when
+    /// `alpha_t` differs from `alpha`).
+    pub(super) fn ggx(&self) -> Ggx {
+        Ggx {
+            ax: self.alpha_t,
+            ay: self.alpha,
+        }
     }
 
     /// A thick surface between equal indices: rough or not, it refracts nothing (the microfacet
@@ -118,6 +127,7 @@ impl Bsdf {
         }
         let lobes = self.lobes(o.z);
         let smooth = self.alpha == 0.0;
+        let ggx = self.ggx();
         if i.z > 0.0 {
             let h = (o + i).normalize();
             let oh = o.dot(h).max(0.0);
@@ -129,9 +139,9 @@ impl Bsdf {
             let mut f = diffuse;
             let mut pdf = lobes.diffuse * i.z * FRAC_1_PI;
             if !smooth {
-                let d = ggx_d(h.z, self.alpha);
-                f += self.fresnel(oh) * (d * g2(o, i, self.alpha) / (4.0 * o.z * i.z));
-                pdf += lobes.reflect * g1(o, self.alpha) * d / (4.0 * o.z);
+                let d = ggx.d(h);
+                f += self.fresnel(oh) * (d * ggx.g2(o, i) / (4.0 * o.z * i.z));
+                pdf += lobes.reflect * ggx.g1(o) * d / (4.0 * o.z);
             }
             return (f, pdf);
         }
@@ -143,10 +153,10 @@ impl Bsdf {
             // The reflection lobe mirrored through the surface (the spec's H_T = V + L mirrored).
             let m = Vec3::new(i.x, i.y, -i.z);
             let h = (o + m).normalize();
-            let d = ggx_d(h.z, self.alpha);
+            let d = ggx.d(h);
             let t = 1.0 - self.fresnel_dielectric(o.dot(h).max(0.0));
-            let f = tint * (t * d * g2(o, m, self.alpha) / (4.0 * o.z * m.z));
-            let pdf = lobes.transmit * g1(o, self.alpha) * d / (4.0 * o.z);
+            let f = tint * (t * d * ggx.g2(o, m) / (4.0 * o.z * m.z));
+            let pdf = lobes.transmit * ggx.g1(o) * d / (4.0 * o.z);
             return (f, pdf);
         }
         // Rough dielectric refraction (Walter et al. 2007), radiance scaled by 1 / eta^2.
@@ -160,12 +170,11 @@ impl Bsdf {
             return (Vec3::ZERO, 0.0);
         }
         let denom = (ih + oh / eta) * (ih + oh / eta);
-        let d = ggx_d(h.z, self.alpha);
+        let d = ggx.d(h);
         let t = 1.0 - self.fresnel_dielectric(oh);
-        let f = tint
-            * (t * d * g2(o, i, self.alpha) * (ih * oh).abs()
-                / (denom * o.z * i.z.abs() * eta * eta));
-        let pdf = lobes.transmit * g1(o, self.alpha) * d * oh / o.z * ih.abs() / denom;
+        let f =
+            tint * (t * d * ggx.g2(o, i) * (ih * oh).abs() / (denom * o.z * i.z.abs() * eta * eta));
+        let pdf = lobes.transmit * ggx.g1(o) * d * oh / o.z * ih.abs() / denom;
         (f, pdf)
     }
 
@@ -178,6 +187,7 @@ impl Bsdf {
         }
         let lobes = self.lobes(o.z);
         let smooth = self.alpha == 0.0;
+        let ggx = self.ggx();
         let pick_reflect = u_lobe < lobes.reflect;
         let pick_transmit = !pick_reflect && u_lobe >= lobes.reflect + lobes.diffuse;
         let out = |i: Vec3, f: Vec3, pdf: f32, delta: bool, straight: bool, eta: f32| {
@@ -205,10 +215,10 @@ impl Bsdf {
             return out(i, f, lobes.transmit, true, false, self.eta);
         }
         let i = if pick_reflect {
-            let h = sample_vndf(o, self.alpha, u);
+            let h = ggx.sample_vndf(o, u);
             2.0 * o.dot(h) * h - o
         } else if pick_transmit {
-            let h = sample_vndf(o, self.alpha, u);
+            let h = ggx.sample_vndf(o, u);
             if self.thin {
                 let r = 2.0 * o.dot(h) * h - o;
                 Vec3::new(r.x, r.y, -r.z)

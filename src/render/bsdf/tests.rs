@@ -8,6 +8,9 @@ use glam::{Vec2, Vec3};
 use super::fresnel::schlick;
 use super::*;
 use crate::geometry::Frame;
+
+mod anisotropy;
+
 fn hash(i: u32) -> f32 {
     (crate::geometry::mix64(i as u64) >> 40) as f32 / (1u64 << 24) as f32
 }

@@ -12,6 +12,7 @@ pub mod error;
 mod image;
 mod instancing;
 mod light;
+mod lobes;
 mod material;
 mod mesh;
 pub mod meshopt;
@@ -34,6 +35,7 @@ use super::{Camera, Instance, LoadError, Scene};
 /// Extensions glint implements: a file may require them, and using any other draws a warning.
 const SUPPORTED: &[&str] = &[
     "KHR_lights_punctual",
+    "KHR_materials_anisotropy",
     "KHR_materials_clearcoat",
     "KHR_materials_emissive_strength",
     "KHR_materials_ior",
