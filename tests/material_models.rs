@@ -88,3 +88,26 @@ fn anisotropy_strength_test_shows_anisotropy() {
     eprintln!("AnisotropyStrengthTest: mean |on - off| {mean:.4}, {changed:.3} of pixels changed");
     assert!(changed > 0.01, "anisotropy changed {changed} of the pixels");
 }
+
+/// IridescenceSuzanne: iridescent dielectric, metal and glass heads. The film is read (no warning),
+/// renders without NaN and colours the reflections.
+#[test]
+fn iridescence_suzanne_shows_the_film() {
+    let Some(path) = model("IridescenceSuzanne") else {
+        return;
+    };
+    let scene = Scene::load(&path).unwrap();
+    assert!(scene.warnings.iter().all(|w| !w.contains("iridescence")));
+    let films = scene
+        .materials
+        .iter()
+        .filter(|m| m.layers.iridescence.is_some())
+        .count();
+    assert_eq!(films, 3, "materials with a film");
+    let on = render_edited(&path, |_| {});
+    let off = render_edited(&path, |m| m.layers.iridescence = None);
+    assert!(finite(&on));
+    let (mean, changed) = difference(&on, &off, 0.05);
+    eprintln!("IridescenceSuzanne: mean |on - off| {mean:.4}, {changed:.3} of pixels changed");
+    assert!(changed > 0.01, "the film changed {changed} of the pixels");
+}

@@ -3,7 +3,7 @@
 
 use glam::{Vec2, Vec3, Vec4Swizzles};
 
-use super::bsdf::{Bsdf, Coat, Sheen};
+use super::bsdf::{Bsdf, Coat, Iridescence, Sheen};
 use crate::geometry::Frame;
 use crate::geometry::{Hit, Ray};
 use crate::scene::layers::Anisotropy;
@@ -214,7 +214,7 @@ fn material_bsdf(
     bsdf
 }
 
-/// KHR_materials_specular's colour, the clearcoat and the sheen, textures applied; a layer whose
+/// KHR_materials_specular's colour, the clearcoat, the sheen and the iridescent film, textures applied; a layer whose
 /// weight comes to 0 here is left off (and costs nothing).
 fn add_layers(scene: &Scene, l: &MaterialLayers, uv: VertexAttrs, coat_n: Vec3, bsdf: &mut Bsdf) {
     bsdf.specular_color = match tex(scene, l.specular_color_tex, uv) {
@@ -233,6 +233,23 @@ fn add_layers(scene: &Scene, l: &MaterialLayers, uv: VertexAttrs, coat_n: Vec3, 
         let rough = s.roughness * tex(scene, s.roughness_tex, uv).map_or(1.0, |t| t.w);
         if color.max_element() > 0.0 {
             bsdf.sheen = Some(Sheen::new(color, rough));
+        }
+    }
+    // The film lies on the outside: a ray leaving a transmissive solid meets the bare base.
+    if let (Some(f), true) = (&l.iridescence, bsdf.outside) {
+        let factor = f.factor * tex(scene, f.factor_tex, uv).map_or(1.0, |t| t.x);
+        let thickness = match tex(scene, f.thickness_tex, uv) {
+            Some(t) => f.thickness_min + (f.thickness_max - f.thickness_min) * t.y,
+            None => f.thickness_max,
+        };
+        if factor > 0.0 && thickness > 0.0 {
+            bsdf.iridescence = Some(Iridescence {
+                factor,
+                ior: f.ior,
+                thickness,
+                // Under a clearcoat the film's outside is the coat (IOR 1.5).
+                outside_ior: if bsdf.coat.is_some() { 1.5 } else { 1.0 },
+            });
         }
     }
 }

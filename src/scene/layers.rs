@@ -41,6 +41,20 @@ pub struct Anisotropy {
     pub texture: Option<TexRef>,
 }
 
+/// KHR_materials_iridescence: a thin dielectric film over the base.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Iridescence {
+    /// iridescenceFactor, times the R channel of `factor_tex`.
+    pub factor: f32,
+    pub factor_tex: Option<TexRef>,
+    /// iridescenceIor: the film's index of refraction.
+    pub ior: f32,
+    /// Film thickness in nanometres: `thickness_max`, or mix(min, max, G of `thickness_tex`).
+    pub thickness_min: f32,
+    pub thickness_max: f32,
+    pub thickness_tex: Option<TexRef>,
+}
+
 /// Everything of a material beyond the metallic-roughness base; the default adds nothing.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MaterialLayers {
@@ -53,6 +67,7 @@ pub struct MaterialLayers {
     pub clearcoat: Option<Clearcoat>,
     pub sheen: Option<Sheen>,
     pub anisotropy: Option<Anisotropy>,
+    pub iridescence: Option<Iridescence>,
 }
 
 impl Default for MaterialLayers {
@@ -64,6 +79,7 @@ impl Default for MaterialLayers {
             clearcoat: None,
             sheen: None,
             anisotropy: None,
+            iridescence: None,
         }
     }
 }
@@ -80,6 +96,9 @@ impl MaterialLayers {
         }
         if let Some(a) = &mut self.anisotropy {
             v.push(&mut a.texture);
+        }
+        if let Some(i) = &mut self.iridescence {
+            v.extend([&mut i.factor_tex, &mut i.thickness_tex]);
         }
         v.into_iter()
     }

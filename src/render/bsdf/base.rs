@@ -45,13 +45,25 @@ impl Bsdf {
     /// strongest channel, which is what the layers below lose.
     fn fresnel_dielectric(&self, cos: f32) -> f32 {
         let f = fresnel_exact(cos, self.eta);
-        if f >= 1.0 {
-            1.0
+        let plain = if f >= 1.0 {
+            return 1.0;
         } else if self.specular_color == Vec3::ONE {
             self.specular * f
         } else {
             self.specular * self.tinted(f).max_element()
+        };
+        match &self.iridescence {
+            None => plain,
+            Some(film) => {
+                let thin = self.specular * film.fresnel(cos, self.dielectric_f0()).max_element();
+                plain + (thin - plain) * film.factor
+            }
         }
+    }
+
+    /// The dielectric's normal-incidence reflectance per channel, tinted by the specular colour.
+    fn dielectric_f0(&self) -> Vec3 {
+        (fresnel_exact(1.0, self.eta) * self.specular_color).min(Vec3::ONE)
     }
 
     /// KHR_materials_specular's colour on the exact Fresnel: F0 tinted (and clamped to 1), and the
@@ -66,18 +78,29 @@ impl Bsdf {
     /// The dielectric layer's reflectance per channel.
     fn fresnel_dielectric_rgb(&self, cos: f32) -> Vec3 {
         let f = fresnel_exact(cos, self.eta);
-        if f >= 1.0 {
-            Vec3::ONE
+        let plain = if f >= 1.0 {
+            return Vec3::ONE;
         } else if self.specular_color == Vec3::ONE {
             Vec3::splat(self.specular * f)
         } else {
             self.specular * self.tinted(f)
+        };
+        match &self.iridescence {
+            None => plain,
+            Some(film) => plain.lerp(
+                self.specular * film.fresnel(cos, self.dielectric_f0()),
+                film.factor,
+            ),
         }
     }
 
-    /// Fresnel of the whole specular lobe: the dielectric and metal layers mixed by metalness.
+    /// Fresnel of the whole specular lobe: the dielectric and metal layers mixed by metalness; a
+    /// thin film (KHR_materials_iridescence) mixes its reflectance into both by its factor.
     fn fresnel(&self, cos: f32) -> Vec3 {
-        let metal = schlick(self.base, cos);
+        let mut metal = schlick(self.base, cos);
+        if let Some(film) = &self.iridescence {
+            metal = metal.lerp(film.fresnel(cos, self.base), film.factor);
+        }
         self.fresnel_dielectric_rgb(cos).lerp(metal, self.metallic)
     }
 

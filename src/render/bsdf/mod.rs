@@ -6,6 +6,7 @@
 mod base;
 mod coat;
 mod fresnel;
+mod iridescence;
 mod layered;
 mod microfacet;
 pub mod sheen;
@@ -16,6 +17,7 @@ use glam::{Vec2, Vec3};
 
 pub use coat::{Coat, COAT_F0};
 pub use fresnel::fresnel_exact;
+pub use iridescence::Iridescence;
 pub use sheen::Sheen;
 
 use crate::geometry::Frame;
@@ -73,6 +75,8 @@ pub struct Bsdf {
     pub coat: Option<Coat>,
     /// KHR_materials_sheen, between the coat and the base.
     pub sheen: Option<Sheen>,
+    /// KHR_materials_iridescence: a thin film whose Fresnel replaces the base's specular one.
+    pub iridescence: Option<Iridescence>,
 }
 
 /// One sampled direction.
@@ -114,6 +118,7 @@ impl Bsdf {
             absorption: Vec3::ZERO,
             coat: None,
             sheen: None,
+            iridescence: None,
         }
     }
 

@@ -5,7 +5,7 @@ use gltf::json::Value;
 
 use super::material::num;
 use super::Loader;
-use crate::scene::layers::Anisotropy;
+use crate::scene::layers::{Anisotropy, Iridescence};
 use crate::scene::Material;
 
 impl Loader<'_> {
@@ -13,6 +13,9 @@ impl Loader<'_> {
     pub(super) fn lobe_extensions(&mut self, m: &gltf::Material, mat: &mut Material, label: &str) {
         if let Some(a) = m.extension_value("KHR_materials_anisotropy") {
             mat.layers.anisotropy = self.anisotropy(a, label);
+        }
+        if let Some(i) = m.extension_value("KHR_materials_iridescence") {
+            mat.layers.iridescence = self.iridescence(i, label);
         }
     }
 
@@ -27,6 +30,23 @@ impl Loader<'_> {
             strength,
             rotation: num(a, "anisotropyRotation", 0.0),
             texture: self.json_tex(a, "anisotropyTexture", false, label),
+        })
+    }
+
+    /// KHR_materials_iridescence's factors and textures; None when the factor is 0.
+    fn iridescence(&mut self, v: &Value, label: &str) -> Option<Iridescence> {
+        let factor = num(v, "iridescenceFactor", 0.0).clamp(0.0, 1.0);
+        if factor == 0.0 {
+            return None;
+        }
+        let ior = num(v, "iridescenceIor", 1.3);
+        Some(Iridescence {
+            factor,
+            factor_tex: self.json_tex(v, "iridescenceTexture", false, label),
+            ior: if ior >= 1.0 { ior } else { 1.3 },
+            thickness_min: num(v, "iridescenceThicknessMinimum", 100.0).max(0.0),
+            thickness_max: num(v, "iridescenceThicknessMaximum", 400.0).max(0.0),
+            thickness_tex: self.json_tex(v, "iridescenceThicknessTexture", false, label),
         })
     }
 }
