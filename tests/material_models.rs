@@ -4,7 +4,7 @@
 
 mod common;
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use glint::accel::Backend;
@@ -24,7 +24,7 @@ fn model(name: &str) -> Option<PathBuf> {
 }
 
 /// Renders the model as `glint render` frames it, after `edit` has changed its materials.
-fn render_edited(path: &PathBuf, edit: impl Fn(&mut Material)) -> Image {
+fn render_edited(path: &Path, edit: impl Fn(&mut Material)) -> Image {
     let (w, h) = (96, 72);
     let mut scene = Scene::load(path).unwrap_or_else(|e| panic!("{e}"));
     scene.materials.iter_mut().for_each(edit);

@@ -21,7 +21,7 @@ pub struct Iridescence {
 
 /// CIE XYZ to linear Rec. 709 (the extension's XYZ_TO_REC709), by columns as GLSL lists them.
 const XYZ_TO_REC709: Mat3 = Mat3::from_cols_array(&[
-    3.2404542, -0.9692660, 0.0556434, -1.5371385, 1.8760108, -0.2040259, -0.4985314, 0.0415560,
+    3.2404542, -0.969_266, 0.0556434, -1.5371385, 1.8760108, -0.2040259, -0.4985314, 0.041_556,
     1.0572252,
 ]);
 
