@@ -9,7 +9,7 @@ use std::sync::Arc;
 
 use glint::accel::Backend;
 use glint::film::Image;
-use glint::render::job::Setup;
+use glint::render::job::{DefaultLights, JobOptions, Setup};
 use glint::render::RenderSettings;
 use glint::scene::{Material, Scene};
 
@@ -23,12 +23,17 @@ fn model(name: &str) -> Option<PathBuf> {
     p.is_file().then_some(p)
 }
 
-/// Renders the model as `glint render` frames it, after `edit` has changed its materials.
+/// Renders the model as `glint render --default-lights on` frames it (the rig's environment shows
+/// reflections even where a file brings only point lights), after `edit` has changed its materials.
 fn render_edited(path: &Path, edit: impl Fn(&mut Material)) -> Image {
     let (w, h) = (96, 72);
     let mut scene = Scene::load(path).unwrap_or_else(|e| panic!("{e}"));
     scene.materials.iter_mut().for_each(edit);
-    let setup = Setup::new(scene, &common::render_options(w, h)).unwrap_or_else(|e| panic!("{e}"));
+    let opts = JobOptions {
+        default_lights: DefaultLights::On,
+        ..common::render_options(w, h)
+    };
+    let setup = Setup::new(scene, &opts).unwrap_or_else(|e| panic!("{e}"));
     let settings = RenderSettings {
         width: w,
         height: h,
