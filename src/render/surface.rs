@@ -3,9 +3,10 @@
 
 use glam::{Vec2, Vec3, Vec4Swizzles};
 
-use super::bsdf::{Bsdf, Coat, Sheen};
+use super::bsdf::{Bsdf, Coat, Iridescence, Sheen};
 use crate::geometry::Frame;
 use crate::geometry::{Hit, Ray};
+use crate::scene::layers::Anisotropy;
 use crate::scene::{Material, MaterialLayers, Scene, TexRef, VertexAttrs};
 
 #[derive(Clone, Copy, Debug)]
@@ -101,7 +102,18 @@ impl SurfaceInteraction {
         };
         let n = mapped(mat.normal_tex, mat.normal_scale);
 
-        let bsdf = material_bsdf(scene, mat, uv, (n, coat_n), entering);
+        let mut bsdf = material_bsdf(scene, mat, uv, (n, coat_n), entering);
+        // Only anisotropic materials pay for a tangent frame.
+        if let Some(a) = &mat.layers.anisotropy {
+            let set = a
+                .texture
+                .or(mat.normal_tex)
+                .map_or(0, |t| t.tex_coord as usize);
+            if let Some(tb) = tangent_frame(scene, hit, n, &to_world, set) {
+                let (strength, dir) = anisotropy_direction(scene, a, uv, tb);
+                bsdf = bsdf.with_anisotropy(strength, dir);
+            }
+        }
         Self {
             p,
             ng,
@@ -206,7 +218,7 @@ fn material_bsdf(
     bsdf
 }
 
-/// KHR_materials_specular's colour, the clearcoat and the sheen, textures applied; a layer whose
+/// KHR_materials_specular's colour, the clearcoat, the sheen and the iridescent film, textures applied; a layer whose
 /// weight comes to 0 here is left off (and costs nothing).
 fn add_layers(scene: &Scene, l: &MaterialLayers, uv: VertexAttrs, coat_n: Vec3, bsdf: &mut Bsdf) {
     bsdf.specular_color = match tex(scene, l.specular_color_tex, uv) {
@@ -227,6 +239,43 @@ fn add_layers(scene: &Scene, l: &MaterialLayers, uv: VertexAttrs, coat_n: Vec3, 
             bsdf.sheen = Some(Sheen::new(color, rough));
         }
     }
+    // The film lies on the outside: a ray leaving a transmissive solid meets the bare base.
+    if let (Some(f), true) = (&l.iridescence, bsdf.outside) {
+        let factor = f.factor * tex(scene, f.factor_tex, uv).map_or(1.0, |t| t.x);
+        let thickness = match tex(scene, f.thickness_tex, uv) {
+            Some(t) => f.thickness_min + (f.thickness_max - f.thickness_min) * t.y,
+            None => f.thickness_max,
+        };
+        if factor > 0.0 && thickness > 0.0 {
+            bsdf.iridescence = Some(Iridescence {
+                factor,
+                ior: f.ior,
+                thickness,
+                // Under a clearcoat the film's outside is the coat (IOR 1.5).
+                outside_ior: if bsdf.coat.is_some() { 1.5 } else { 1.0 },
+            });
+        }
+    }
+}
+
+/// KHR_materials_anisotropy's strength and world direction at a point, from the tangent frame
+/// `(t, b)`: the texture's RG direction (or the tangent) turned by anisotropyRotation.
+fn anisotropy_direction(
+    scene: &Scene,
+    a: &Anisotropy,
+    uv: VertexAttrs,
+    (t, b): (Vec3, Vec3),
+) -> (f32, Vec3) {
+    let (sin, cos) = a.rotation.sin_cos();
+    let (strength, d) = match tex(scene, a.texture, uv) {
+        Some(x) => {
+            let d = Vec2::new(2.0 * x.x - 1.0, 2.0 * x.y - 1.0).normalize_or_zero();
+            let d = Vec2::new(cos * d.x - sin * d.y, sin * d.x + cos * d.y);
+            (a.strength * x.z, d)
+        }
+        None => (a.strength, Vec2::new(cos, sin)),
+    };
+    (strength, t * d.x + b * d.y)
 }
 
 /// Smallest margin above the geometric surface for the mirror direction of `wo` about the shading normal.

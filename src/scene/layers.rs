@@ -1,5 +1,5 @@
 //! The glTF material extensions layered over the metallic-roughness base: KHR_materials_specular's
-//! colour and textures, KHR_materials_clearcoat and KHR_materials_sheen, as factors and textures.
+//! colour and textures, clearcoat, sheen, anisotropy, iridescence and diffuse transmission.
 
 use glam::Vec3;
 
@@ -30,6 +30,31 @@ pub struct Sheen {
     pub roughness_tex: Option<TexRef>,
 }
 
+/// KHR_materials_anisotropy: the base's specular roughness raised along a direction in the surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Anisotropy {
+    /// anisotropyStrength, times the B channel of `texture`.
+    pub strength: f32,
+    /// anisotropyRotation (radians, counter-clockwise from the tangent).
+    pub rotation: f32,
+    /// Direction in tangent space in RG (mapped from [0, 1] to [-1, 1]), strength in B; linear.
+    pub texture: Option<TexRef>,
+}
+
+/// KHR_materials_iridescence: a thin dielectric film over the base.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Iridescence {
+    /// iridescenceFactor, times the R channel of `factor_tex`.
+    pub factor: f32,
+    pub factor_tex: Option<TexRef>,
+    /// iridescenceIor: the film's index of refraction.
+    pub ior: f32,
+    /// Film thickness in nanometres: `thickness_max`, or mix(min, max, G of `thickness_tex`).
+    pub thickness_min: f32,
+    pub thickness_max: f32,
+    pub thickness_tex: Option<TexRef>,
+}
+
 /// Everything of a material beyond the metallic-roughness base; the default adds nothing.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MaterialLayers {
@@ -41,6 +66,8 @@ pub struct MaterialLayers {
     pub specular_color_tex: Option<TexRef>,
     pub clearcoat: Option<Clearcoat>,
     pub sheen: Option<Sheen>,
+    pub anisotropy: Option<Anisotropy>,
+    pub iridescence: Option<Iridescence>,
 }
 
 impl Default for MaterialLayers {
@@ -51,6 +78,8 @@ impl Default for MaterialLayers {
             specular_color_tex: None,
             clearcoat: None,
             sheen: None,
+            anisotropy: None,
+            iridescence: None,
         }
     }
 }
@@ -64,6 +93,12 @@ impl MaterialLayers {
         }
         if let Some(s) = &mut self.sheen {
             v.extend([&mut s.color_tex, &mut s.roughness_tex]);
+        }
+        if let Some(a) = &mut self.anisotropy {
+            v.push(&mut a.texture);
+        }
+        if let Some(i) = &mut self.iridescence {
+            v.extend([&mut i.factor_tex, &mut i.thickness_tex]);
         }
         v.into_iter()
     }

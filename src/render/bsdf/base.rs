@@ -7,7 +7,7 @@ use std::f32::consts::FRAC_1_PI;
 use glam::{Vec2, Vec3};
 
 use super::fresnel::{fresnel_exact, schlick};
-use super::microfacet::{g1, g2, ggx_d, sample_vndf};
+use super::microfacet::Ggx;
 use super::{choice_probabilities, luminance, Bsdf, BsdfSample};
 use crate::sample::warp::cosine_hemisphere;
 
@@ -25,6 +25,15 @@ impl Bsdf {
         self.alpha == 0.0 && (self.metallic == 1.0 || self.transmission == 1.0)
     }
 
+    /// The specular lobes' microfacet distribution (anisotropic along the frame's tangent when
+    /// `alpha_t` differs from `alpha`).
+    pub(super) fn ggx(&self) -> Ggx {
+        Ggx {
+            ax: self.alpha_t,
+            ay: self.alpha,
+        }
+    }
+
     /// A thick surface between equal indices: rough or not, it refracts nothing (the microfacet
     /// half vector of Walter et al. degenerates there), so its transmission is a straight delta.
     fn index_matched(&self) -> bool {
@@ -36,13 +45,25 @@ impl Bsdf {
     /// strongest channel, which is what the layers below lose.
     fn fresnel_dielectric(&self, cos: f32) -> f32 {
         let f = fresnel_exact(cos, self.eta);
-        if f >= 1.0 {
-            1.0
+        let plain = if f >= 1.0 {
+            return 1.0;
         } else if self.specular_color == Vec3::ONE {
             self.specular * f
         } else {
             self.specular * self.tinted(f).max_element()
+        };
+        match &self.iridescence {
+            None => plain,
+            Some(film) => {
+                let thin = self.specular * film.fresnel(cos, self.dielectric_f0()).max_element();
+                plain + (thin - plain) * film.factor
+            }
         }
+    }
+
+    /// The dielectric's normal-incidence reflectance per channel, tinted by the specular colour.
+    fn dielectric_f0(&self) -> Vec3 {
+        (fresnel_exact(1.0, self.eta) * self.specular_color).min(Vec3::ONE)
     }
 
     /// KHR_materials_specular's colour on the exact Fresnel: F0 tinted (and clamped to 1), and the
@@ -57,18 +78,29 @@ impl Bsdf {
     /// The dielectric layer's reflectance per channel.
     fn fresnel_dielectric_rgb(&self, cos: f32) -> Vec3 {
         let f = fresnel_exact(cos, self.eta);
-        if f >= 1.0 {
-            Vec3::ONE
+        let plain = if f >= 1.0 {
+            return Vec3::ONE;
         } else if self.specular_color == Vec3::ONE {
             Vec3::splat(self.specular * f)
         } else {
             self.specular * self.tinted(f)
+        };
+        match &self.iridescence {
+            None => plain,
+            Some(film) => plain.lerp(
+                self.specular * film.fresnel(cos, self.dielectric_f0()),
+                film.factor,
+            ),
         }
     }
 
-    /// Fresnel of the whole specular lobe: the dielectric and metal layers mixed by metalness.
+    /// Fresnel of the whole specular lobe: the dielectric and metal layers mixed by metalness; a
+    /// thin film (KHR_materials_iridescence) mixes its reflectance into both by its factor.
     fn fresnel(&self, cos: f32) -> Vec3 {
-        let metal = schlick(self.base, cos);
+        let mut metal = schlick(self.base, cos);
+        if let Some(film) = &self.iridescence {
+            metal = metal.lerp(film.fresnel(cos, self.base), film.factor);
+        }
         self.fresnel_dielectric_rgb(cos).lerp(metal, self.metallic)
     }
 
@@ -118,6 +150,7 @@ impl Bsdf {
         }
         let lobes = self.lobes(o.z);
         let smooth = self.alpha == 0.0;
+        let ggx = self.ggx();
         if i.z > 0.0 {
             let h = (o + i).normalize();
             let oh = o.dot(h).max(0.0);
@@ -129,9 +162,9 @@ impl Bsdf {
             let mut f = diffuse;
             let mut pdf = lobes.diffuse * i.z * FRAC_1_PI;
             if !smooth {
-                let d = ggx_d(h.z, self.alpha);
-                f += self.fresnel(oh) * (d * g2(o, i, self.alpha) / (4.0 * o.z * i.z));
-                pdf += lobes.reflect * g1(o, self.alpha) * d / (4.0 * o.z);
+                let d = ggx.d(h);
+                f += self.fresnel(oh) * (d * ggx.g2(o, i) / (4.0 * o.z * i.z));
+                pdf += lobes.reflect * ggx.g1(o) * d / (4.0 * o.z);
             }
             return (f, pdf);
         }
@@ -143,10 +176,10 @@ impl Bsdf {
             // The reflection lobe mirrored through the surface (the spec's H_T = V + L mirrored).
             let m = Vec3::new(i.x, i.y, -i.z);
             let h = (o + m).normalize();
-            let d = ggx_d(h.z, self.alpha);
+            let d = ggx.d(h);
             let t = 1.0 - self.fresnel_dielectric(o.dot(h).max(0.0));
-            let f = tint * (t * d * g2(o, m, self.alpha) / (4.0 * o.z * m.z));
-            let pdf = lobes.transmit * g1(o, self.alpha) * d / (4.0 * o.z);
+            let f = tint * (t * d * ggx.g2(o, m) / (4.0 * o.z * m.z));
+            let pdf = lobes.transmit * ggx.g1(o) * d / (4.0 * o.z);
             return (f, pdf);
         }
         // Rough dielectric refraction (Walter et al. 2007), radiance scaled by 1 / eta^2.
@@ -160,12 +193,11 @@ impl Bsdf {
             return (Vec3::ZERO, 0.0);
         }
         let denom = (ih + oh / eta) * (ih + oh / eta);
-        let d = ggx_d(h.z, self.alpha);
+        let d = ggx.d(h);
         let t = 1.0 - self.fresnel_dielectric(oh);
-        let f = tint
-            * (t * d * g2(o, i, self.alpha) * (ih * oh).abs()
-                / (denom * o.z * i.z.abs() * eta * eta));
-        let pdf = lobes.transmit * g1(o, self.alpha) * d * oh / o.z * ih.abs() / denom;
+        let f =
+            tint * (t * d * ggx.g2(o, i) * (ih * oh).abs() / (denom * o.z * i.z.abs() * eta * eta));
+        let pdf = lobes.transmit * ggx.g1(o) * d * oh / o.z * ih.abs() / denom;
         (f, pdf)
     }
 
@@ -178,6 +210,7 @@ impl Bsdf {
         }
         let lobes = self.lobes(o.z);
         let smooth = self.alpha == 0.0;
+        let ggx = self.ggx();
         let pick_reflect = u_lobe < lobes.reflect;
         let pick_transmit = !pick_reflect && u_lobe >= lobes.reflect + lobes.diffuse;
         let out = |i: Vec3, f: Vec3, pdf: f32, delta: bool, straight: bool, eta: f32| {
@@ -205,10 +238,10 @@ impl Bsdf {
             return out(i, f, lobes.transmit, true, false, self.eta);
         }
         let i = if pick_reflect {
-            let h = sample_vndf(o, self.alpha, u);
+            let h = ggx.sample_vndf(o, u);
             2.0 * o.dot(h) * h - o
         } else if pick_transmit {
-            let h = sample_vndf(o, self.alpha, u);
+            let h = ggx.sample_vndf(o, u);
             if self.thin {
                 let r = 2.0 * o.dot(h) * h - o;
                 Vec3::new(r.x, r.y, -r.z)

@@ -3,7 +3,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::microfacet::{g1, g2, ggx_d, sample_vndf};
+use super::microfacet::Ggx;
 use super::{fresnel::schlick1, MIN_ALPHA};
 use crate::geometry::Frame;
 
@@ -49,9 +49,10 @@ impl Coat {
             return (0.0, 0.0);
         }
         let h = (o + i).normalize();
-        let d = ggx_d(h.z, self.alpha);
-        let f = self.fresnel(wo) * d * g2(o, i, self.alpha) / (4.0 * o.z * i.z);
-        (f, g1(o, self.alpha) * d / (4.0 * o.z))
+        let ggx = Ggx::iso(self.alpha);
+        let d = ggx.d(h);
+        let f = self.fresnel(wo) * d * ggx.g2(o, i) / (4.0 * o.z * i.z);
+        (f, ggx.g1(o) * d / (4.0 * o.z))
     }
 
     /// A reflected world direction: the mirror direction when smooth, else through a visible normal.
@@ -63,7 +64,7 @@ impl Coat {
         let i = if self.is_delta() {
             Vec3::new(-o.x, -o.y, o.z)
         } else {
-            let h = sample_vndf(o, self.alpha, u);
+            let h = Ggx::iso(self.alpha).sample_vndf(o, u);
             2.0 * o.dot(h) * h - o
         };
         (i.z > 0.0).then(|| self.frame.to_world(i))

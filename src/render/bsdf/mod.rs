@@ -6,6 +6,7 @@
 mod base;
 mod coat;
 mod fresnel;
+mod iridescence;
 mod layered;
 mod microfacet;
 pub mod sheen;
@@ -16,6 +17,7 @@ use glam::{Vec2, Vec3};
 
 pub use coat::{Coat, COAT_F0};
 pub use fresnel::fresnel_exact;
+pub use iridescence::Iridescence;
 pub use sheen::Sheen;
 
 use crate::geometry::Frame;
@@ -46,8 +48,11 @@ pub struct Bsdf {
     pub frame: Frame,
     pub base: Vec3,
     pub metallic: f32,
-    /// GGX alpha = perceptual roughness squared (0 for smooth, delta lobes).
+    /// GGX alpha = perceptual roughness squared (0 for smooth, delta lobes); along the frame's
+    /// bitangent when anisotropic.
     pub alpha: f32,
+    /// GGX alpha along the frame's tangent: `alpha`, unless KHR_materials_anisotropy stretches it.
+    pub alpha_t: f32,
     /// Weight of the dielectric specular layer (KHR_materials_specular).
     pub specular: f32,
     /// Tint of the dielectric F0 (KHR_materials_specular's colour; 1 leaves the Fresnel untouched).
@@ -70,6 +75,8 @@ pub struct Bsdf {
     pub coat: Option<Coat>,
     /// KHR_materials_sheen, between the coat and the base.
     pub sheen: Option<Sheen>,
+    /// KHR_materials_iridescence: a thin film whose Fresnel replaces the base's specular one.
+    pub iridescence: Option<Iridescence>,
 }
 
 /// One sampled direction.
@@ -95,11 +102,13 @@ impl Bsdf {
     pub fn new(frame: Frame, base: Vec3, metallic: f32, roughness: f32, specular: f32) -> Self {
         let r = roughness.clamp(0.0, 1.0);
         let alpha = r * r;
+        let alpha = if alpha < MIN_ALPHA { 0.0 } else { alpha };
         Self {
             frame,
             base,
             metallic: metallic.clamp(0.0, 1.0),
-            alpha: if alpha < MIN_ALPHA { 0.0 } else { alpha },
+            alpha,
+            alpha_t: alpha,
             specular: specular.clamp(0.0, 1.0),
             specular_color: Vec3::ONE,
             transmission: 0.0,
@@ -109,6 +118,7 @@ impl Bsdf {
             absorption: Vec3::ZERO,
             coat: None,
             sheen: None,
+            iridescence: None,
         }
     }
 
@@ -132,6 +142,27 @@ impl Bsdf {
         // Opaque and thin surfaces have no inside: every hit comes from the outside.
         self.outside = self.thin || entering;
         self.eta = if self.outside { ior } else { 1.0 / ior };
+        self
+    }
+
+    /// KHR_materials_anisotropy: the specular lobes' roughness raised along `tangent` (a direction
+    /// in the surface, made orthogonal to the normal here) to mix(alpha, 1, strength^2), the
+    /// perpendicular roughness kept (at least MIN_ALPHA, so a smooth surface becomes a rough
+    /// line-shaped lobe). Strength 0, or a tangent along the normal, changes nothing.
+    pub fn with_anisotropy(mut self, strength: f32, tangent: Vec3) -> Self {
+        let s = strength.clamp(0.0, 1.0);
+        let n = self.frame.n;
+        let t = (tangent - n * n.dot(tangent)).normalize_or_zero();
+        if s == 0.0 || t == Vec3::ZERO {
+            return self;
+        }
+        self.frame = Frame {
+            t,
+            b: n.cross(t),
+            n,
+        };
+        self.alpha = self.alpha.max(MIN_ALPHA);
+        self.alpha_t = self.alpha + (1.0 - self.alpha) * s * s;
         self
     }
 

@@ -8,6 +8,10 @@ use glam::{Vec2, Vec3};
 use super::fresnel::schlick;
 use super::*;
 use crate::geometry::Frame;
+
+mod anisotropy;
+mod iridescence;
+
 fn hash(i: u32) -> f32 {
     (crate::geometry::mix64(i as u64) >> 40) as f32 / (1u64 << 24) as f32
 }
@@ -446,7 +450,7 @@ fn white_furnace_per_layer_reflects_at_most_one() {
 
 /// GGX D and the height-correlated V of the glTF spec's appendix B, as the Khronos sample renderer
 /// writes them.
-fn spec_specular_brdf(n: Vec3, v: Vec3, l: Vec3, alpha: f32) -> f32 {
+pub(super) fn spec_specular_brdf(n: Vec3, v: Vec3, l: Vec3, alpha: f32) -> f32 {
     let h = (v + l).normalize();
     let (nl, nv, nh) = (n.dot(l), n.dot(v), n.dot(h));
     let a2 = alpha * alpha;

@@ -10,14 +10,14 @@ use crate::scene::mesh::UV_SETS;
 use crate::scene::{AlphaMode, Material, TexRef};
 
 /// A number of an extension's JSON object, or its default.
-fn num(v: &Value, key: &str, default: f32) -> f32 {
+pub(super) fn num(v: &Value, key: &str, default: f32) -> f32 {
     v.get(key)
         .and_then(Value::as_f64)
         .map_or(default, |f| f as f32)
 }
 
 /// An RGB triple of an extension's JSON object, or its default.
-fn rgb(v: &Value, key: &str, default: Vec3) -> Vec3 {
+pub(super) fn rgb(v: &Value, key: &str, default: Vec3) -> Vec3 {
     match v.get(key).and_then(Value::as_array) {
         Some(a) if a.len() == 3 => Vec3::new(
             a[0].as_f64().unwrap_or(default.x as f64) as f32,
@@ -138,6 +138,7 @@ impl Loader<'_> {
         if let Some(sh) = m.extension_value("KHR_materials_sheen") {
             mat.layers.sheen = self.sheen(sh, &label);
         }
+        self.lobe_extensions(m, &mut mat, &label);
         if let Some(t) = pbr.base_color_texture() {
             mat.base_color_tex = self.tex_ref(TexInfo::from_info(&t), true, &label);
         }

@@ -13,6 +13,7 @@ pub mod error;
 mod image;
 mod instancing;
 mod light;
+mod lobes;
 mod material;
 mod mesh;
 pub mod meshopt;
@@ -36,9 +37,11 @@ use super::{Camera, Instance, LoadError, Scene};
 /// Extensions glint implements: a file may require them, and using any other draws a warning.
 const SUPPORTED: &[&str] = &[
     "KHR_lights_punctual",
+    "KHR_materials_anisotropy",
     "KHR_materials_clearcoat",
     "KHR_materials_emissive_strength",
     "KHR_materials_ior",
+    "KHR_materials_iridescence",
     "KHR_materials_pbrSpecularGlossiness",
     "KHR_materials_sheen",
     "KHR_materials_specular",
