@@ -64,11 +64,35 @@ pub fn decode(bytes: &[u8]) -> Result<Rgba8, Ktx2Error> {
     if width > MAX_EDGE || height > MAX_EDGE || width as u64 * height as u64 > MAX_PIXELS {
         return Err(Ktx2Error::TooLarge(width, height));
     }
+    let mut out = vec![0u8; width as usize * height as usize * 4];
+    transcode_level0(&reader, &mut out)?;
+    Ok(Rgba8 {
+        width: width as usize,
+        height: height as usize,
+        pixels: out
+            .chunks_exact(4)
+            .map(|p| [p[0], p[1], p[2], p[3]])
+            .collect(),
+    })
+}
+
+/// Level 0 of the first layer and face, as RGBA8 into `out` (width x height x 4 bytes).
+fn transcode_level0(reader: &ktx2::Reader<&[u8]>, out: &mut [u8]) -> Result<(), Ktx2Error> {
+    let header = reader.header();
+    let (width, height) = (header.pixel_width, header.pixel_height.max(1));
     let level = reader.levels().next().ok_or(Ktx2Error::NoLevel)?;
     let layers = header.layer_count.max(1) as u64;
     let scheme = header.supercompression_scheme;
+    // Every layer's bytes are declared; the first layer's `image` bytes are the texture.
+    let inflated = |image: u64| {
+        inflate(
+            level.data,
+            level.uncompressed_byte_length,
+            scheme,
+            image * layers,
+        )
+    };
     let model = reader.basic_dfd().and_then(|d| d.color_model);
-    let mut out = vec![0u8; width as usize * height as usize * 4];
     match (header.format, model, scheme) {
         (None, Some(ColorModel::ETC1S), Some(SupercompressionScheme::BasisLZ)) => {
             let books = basislz::GlobalData::parse(
@@ -83,19 +107,14 @@ pub fn decode(bytes: &[u8]) -> Result<Rgba8, Ktx2Error> {
                 slices,
                 width,
                 height,
-                &mut out,
+                out,
             )?;
         }
         (None, Some(ColorModel::UASTC), None | Some(SupercompressionScheme::Zstandard)) => {
             let image = width.div_ceil(4) as u64 * height.div_ceil(4) as u64 * 16;
-            let data = inflate(
-                level.data,
-                level.uncompressed_byte_length,
-                scheme,
-                image * layers,
-            )?;
+            let data = inflated(image)?;
             let first = &data[..image as usize];
-            glint_basisu::uastc_to_rgba(first, width, height, true, &mut out)?;
+            glint_basisu::uastc_to_rgba(first, width, height, true, out)?;
         }
         (
             Some(f @ (Format::R8G8B8A8_UNORM | Format::R8G8B8A8_SRGB)),
@@ -113,12 +132,7 @@ pub fn decode(bytes: &[u8]) -> Result<Rgba8, Ktx2Error> {
                 4
             };
             let image = width as u64 * height as u64 * channels;
-            let data = inflate(
-                level.data,
-                level.uncompressed_byte_length,
-                scheme,
-                image * layers,
-            )?;
+            let data = inflated(image)?;
             for (o, p) in out
                 .chunks_exact_mut(4)
                 .zip(data.chunks_exact(channels as usize))
@@ -129,24 +143,23 @@ pub fn decode(bytes: &[u8]) -> Result<Rgba8, Ktx2Error> {
                 }
             }
         }
-        (format, model, scheme) => {
-            let what = match (format, model) {
-                (Some(f), _) => format!("{f:?}"),
-                (None, Some(m)) => format!("{m:?}"),
-                (None, None) => "undescribed".to_string(),
-            };
-            let how = scheme.map_or(String::new(), |s| format!(" ({s:?} supercompressed)"));
-            return Err(Ktx2Error::Unsupported(format!("{what}{how}")));
-        }
+        (format, model, scheme) => return Err(unsupported(format, model, scheme)),
     }
-    Ok(Rgba8 {
-        width: width as usize,
-        height: height as usize,
-        pixels: out
-            .chunks_exact(4)
-            .map(|p| [p[0], p[1], p[2], p[3]])
-            .collect(),
-    })
+    Ok(())
+}
+
+fn unsupported(
+    format: Option<Format>,
+    model: Option<ColorModel>,
+    scheme: Option<SupercompressionScheme>,
+) -> Ktx2Error {
+    let what = match (format, model) {
+        (Some(f), _) => format!("{f:?}"),
+        (None, Some(m)) => format!("{m:?}"),
+        (None, None) => "undescribed".to_string(),
+    };
+    let how = scheme.map_or(String::new(), |s| format!(" ({s:?} supercompressed)"));
+    Ktx2Error::Unsupported(format!("{what}{how}"))
 }
 
 /// Level 0's bytes, inflated when Zstandard-compressed: exactly `needed` bytes, the size the level
