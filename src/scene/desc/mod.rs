@@ -254,6 +254,30 @@ fn add_asset(
         })?;
     }
     // Overrides replace the asset's materials before they join the scene's list.
+    let remap = material_overrides(a, &asset, lookup, at)?;
+    for w in asset.warnings.drain(..) {
+        scene.warnings.push(format!("{}: {w}", rel.display()));
+    }
+    scene.append(asset, &remap, |u| blend(start, end, u));
+    // Checked as the scene grows, so that a file naming one asset a million times stops early.
+    if let Some(why) = scene.too_large() {
+        return Err(at(
+            a.path.span(),
+            format!("asset '{}': {why}", rel.display()),
+        ));
+    }
+    Ok(())
+}
+
+/// The asset's material indices that the scene file replaces (`material` for all of them, or
+/// `materials` by name), with the scene-file materials replacing them.
+fn material_overrides(
+    a: &AssetDesc,
+    asset: &Scene,
+    lookup: &dyn Fn(&Spanned<String>) -> Result<u32, LoadError>,
+    at: &At,
+) -> Result<HashMap<usize, u32>, LoadError> {
+    let rel = a.path.get_ref();
     let all = a.material.as_ref().map(lookup).transpose()?;
     let mut remap: HashMap<usize, u32> = HashMap::new();
     for (i, m) in asset.materials.iter().enumerate() {
@@ -271,18 +295,7 @@ fn add_asset(
             ));
         }
     }
-    for w in asset.warnings.drain(..) {
-        scene.warnings.push(format!("{}: {w}", rel.display()));
-    }
-    scene.append(asset, &remap, |u| blend(start, end, u));
-    // Checked as the scene grows, so that a file naming one asset a million times stops early.
-    if let Some(why) = scene.too_large() {
-        return Err(at(
-            a.path.span(),
-            format!("asset '{}': {why}", rel.display()),
-        ));
-    }
-    Ok(())
+    Ok(remap)
 }
 
 /// The file's camera, with its thin lens when it has an aperture or f-number.

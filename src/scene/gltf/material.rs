@@ -139,32 +139,12 @@ impl Loader<'_> {
             mat.layers.sheen = self.sheen(sh, &label);
         }
         self.lobe_extensions(m, &mut mat, &label);
-        if let Some(t) = pbr.base_color_texture() {
-            mat.base_color_tex = self.tex_ref(TexInfo::from_info(&t), true, &label);
-        }
-        if let Some(t) = pbr.metallic_roughness_texture() {
-            mat.metallic_roughness_tex = self.tex_ref(TexInfo::from_info(&t), false, &label);
-        }
-        if let Some(t) = m.normal_texture() {
-            let info = TexInfo::from_parts(
-                t.texture().index(),
-                t.tex_coord(),
-                t.extension_value("KHR_texture_transform"),
-            );
-            mat.normal_tex = self.tex_ref(info, false, &label);
-            mat.normal_scale = t.scale();
-        }
-        if let Some(t) = m.emissive_texture() {
-            mat.emissive_tex = self.tex_ref(TexInfo::from_info(&t), true, &label);
-        }
-        if let Some(t) = m.transmission().and_then(|t| t.transmission_texture()) {
-            mat.transmission_tex = self.tex_ref(TexInfo::from_info(&t), false, &label);
-        }
-        // Without KHR_materials_volume a transmissive surface is thin-walled (thickness 0). The
-        // thickness texture only serves rasterisers; a path tracer measures the real thickness.
+        self.core_textures(m, &mut mat, &label);
         if let Some(sg) = m.extension_value("KHR_materials_pbrSpecularGlossiness") {
             self.spec_gloss(sg, &mut mat, &label);
         }
+        // Without KHR_materials_volume a transmissive surface is thin-walled (thickness 0). The
+        // thickness texture only serves rasterisers; a path tracer measures the real thickness.
         if let Some(v) = m.volume() {
             mat.thickness = v.thickness_factor().max(0.0);
             mat.attenuation_color = Vec3::from(v.attenuation_color()).clamp(Vec3::ZERO, Vec3::ONE);
@@ -172,6 +152,33 @@ impl Loader<'_> {
             mat.attenuation_distance = if d > 0.0 { d } else { f32::INFINITY };
         }
         mat
+    }
+
+    /// The core model's textures (base colour, metallic-roughness, normal, emissive) and
+    /// KHR_materials_transmission's.
+    fn core_textures(&mut self, m: &gltf::Material, mat: &mut Material, label: &str) {
+        let pbr = m.pbr_metallic_roughness();
+        if let Some(t) = pbr.base_color_texture() {
+            mat.base_color_tex = self.tex_ref(TexInfo::from_info(&t), true, label);
+        }
+        if let Some(t) = pbr.metallic_roughness_texture() {
+            mat.metallic_roughness_tex = self.tex_ref(TexInfo::from_info(&t), false, label);
+        }
+        if let Some(t) = m.normal_texture() {
+            let info = TexInfo::from_parts(
+                t.texture().index(),
+                t.tex_coord(),
+                t.extension_value("KHR_texture_transform"),
+            );
+            mat.normal_tex = self.tex_ref(info, false, label);
+            mat.normal_scale = t.scale();
+        }
+        if let Some(t) = m.emissive_texture() {
+            mat.emissive_tex = self.tex_ref(TexInfo::from_info(&t), true, label);
+        }
+        if let Some(t) = m.transmission().and_then(|t| t.transmission_texture()) {
+            mat.transmission_tex = self.tex_ref(TexInfo::from_info(&t), false, label);
+        }
     }
 
     /// KHR_materials_clearcoat's factors and textures; None when the coat is off (factor 0).
