@@ -91,20 +91,29 @@ pub fn write_layers(beauty: &Image, layers: &[Layer], path: &Path) -> Result<(),
     })
 }
 
-/// One channel of an EXR's first layer, as floats (u32 channels converted), by its full name.
-pub fn read_channel(path: &Path, name: &str) -> Result<Option<Vec<f32>>, FilmError> {
+/// An EXR's first valid layer with every channel and attribute, as sample shards and channel
+/// readers want it.
+pub(super) type FirstLayer =
+    exr::prelude::Image<exr::prelude::Layer<exr::prelude::AnyChannels<exr::prelude::FlatSamples>>>;
+
+/// Reads an EXR's first valid layer, whole (its largest resolution level).
+pub(super) fn read_first_layer(path: &Path) -> Result<FirstLayer, exr::error::Error> {
     use exr::prelude::*;
-    let image = read()
+    read()
         .no_deep_data()
         .largest_resolution_level()
         .all_channels()
         .first_valid_layer()
         .all_attributes()
         .from_file(path)
-        .map_err(|error| FilmError::ReadExr {
-            path: path.to_path_buf(),
-            error,
-        })?;
+}
+
+/// One channel of an EXR's first layer, as floats (u32 channels converted), by its full name.
+pub fn read_channel(path: &Path, name: &str) -> Result<Option<Vec<f32>>, FilmError> {
+    let image = read_first_layer(path).map_err(|error| FilmError::ReadExr {
+        path: path.to_path_buf(),
+        error,
+    })?;
     Ok(image
         .layer_data
         .channel_data

@@ -208,17 +208,10 @@ pub fn read_sample_shard(path: &Path) -> Result<SampleShard, MergeError> {
         path: path.to_path_buf(),
         what,
     };
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .first_valid_layer()
-        .all_attributes()
-        .from_file(path)
-        .map_err(|error| MergeError::Read {
-            path: path.to_path_buf(),
-            error,
-        })?;
+    let image = super::layers::read_first_layer(path).map_err(|error| MergeError::Read {
+        path: path.to_path_buf(),
+        error,
+    })?;
     let layer = &image.layer_data;
     let text = |key: &str| match layer.attributes.other.get(&Text::from(key)) {
         Some(AttributeValue::Text(t)) => Some(t.to_string()),
