@@ -7,7 +7,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 shared=${SHARED:-/work/shared/assets}
 c=$root/fuzz/corpus
 max=65536   # seeds over 64 KiB only slow the fuzzer down (and libFuzzer's max_len follows the largest)
-mkdir -p "$c"/{gltf_load,glb_load,obj_load,scene_toml,envmap_load,texture_decode,meshopt_decode}
+mkdir -p "$c"/{gltf_load,glb_load,obj_load,scene_toml,envmap_load,texture_decode,meshopt_decode,ktx2_decode}
 
 small() { find "$@" -type f -size -${max}c 2>/dev/null || true; }
 for f in $(small "$root/assets" "$shared" -name '*.gltf'); do cp "$f" "$c/gltf_load/$(basename "$f")"; done
@@ -25,6 +25,7 @@ done
 printf 'mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvn 0 0 1\no quad\nusemtl red\nf 1/1/1 2/2/1 3/3/1 4/1/1\ng back\nusemtl glass\nf -1//1 -2//1 -3//1\n\n#MTL\nnewmtl red\nKd 1 0 0\nKs 0.5 0.5 0.5\nNs 50\nmap_Kd -bm 1 tex.png\nnewmtl glass\nillum 7\nNi 1.5\nTf 0.9 1 0.9\nd 0.5\nKe 1 1 1\n' > "$c/obj_load/quad-mtl.obj"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\nl 1 2\np 3\n' > "$c/obj_load/tetra.obj"
 cp "$root"/assets/scenes/*.toml "$c/scene_toml/"
+for f in $(small "$root/assets" "$shared" -name '*.ktx2'); do cp "$f" "$c/ktx2_decode/$(basename "$f")"; done
 for f in $(small "$root/assets" "$shared" \( -name '*.png' -o -name '*.jpg' -o -name '*.jpeg' -o -name '*.webp' \)); do
     cp "$f" "$c/texture_decode/$(basename "$f")"
 done
