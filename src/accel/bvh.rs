@@ -149,16 +149,9 @@ impl Bvh {
         }
     }
 
-    /// Bytes held by the structure (nodes, triangles, ids).
-    fn bytes(&self) -> usize {
-        self.nodes.len() * std::mem::size_of::<NodeW>()
-            + self.tris.len() * std::mem::size_of::<Tri4>()
-            + self.ids.len() * std::mem::size_of::<TriId>()
-    }
-
     /// Walks the tree front to back, keeping the closest accepted hit; with `any`, returns the first.
     #[inline(always)]
-    pub(super) fn traverse(&self, scene: &Scene, ray: &Ray, any: bool) -> Option<Hit> {
+    pub(super) fn query(&self, scene: &Scene, ray: &Ray, any: bool) -> Option<Hit> {
         if self.nodes.is_empty() {
             return None;
         }
@@ -901,16 +894,13 @@ impl Triangles for Bvh {
     }
 
     #[inline]
-    fn intersect(&self, scene: &Scene, ray: &Ray) -> Option<Hit> {
-        self.traverse(scene, ray, false)
-    }
-
-    #[inline]
-    fn occluded(&self, scene: &Scene, ray: &Ray) -> bool {
-        self.traverse(scene, ray, true).is_some()
+    fn traverse(&self, scene: &Scene, ray: &Ray, any: bool) -> Option<Hit> {
+        Self::query(self, scene, ray, any)
     }
 
     fn memory_bytes(&self) -> usize {
-        self.bytes()
+        self.nodes.len() * std::mem::size_of::<NodeW>()
+            + self.tris.len() * std::mem::size_of::<Tri4>()
+            + self.ids.len() * std::mem::size_of::<TriId>()
     }
 }

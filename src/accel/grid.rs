@@ -270,14 +270,6 @@ impl Grid {
         self.offsets.windows(2).filter(|w| w[1] > w[0]).count()
     }
 
-    fn bytes(&self) -> usize {
-        self.tris.len() * std::mem::size_of::<[Vec3; 3]>()
-            + self.ids.len() * std::mem::size_of::<TriId>()
-            + self.offsets.len() * 4
-            + self.packets.len() * std::mem::size_of::<Tri4>()
-            + self.lanes.len() * std::mem::size_of::<[u32; 4]>()
-    }
-
     /// Ray parameter where the ray crosses boundary `k` of `axis` (computed the same way everywhere).
     #[inline(always)]
     fn crossing(&self, axis: usize, k: i32, o: f32, inv: f32) -> f32 {
@@ -288,7 +280,7 @@ impl Grid {
     /// (Negated comparisons are deliberate: a NaN distance or limit ends the walk.)
     #[inline(always)]
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
-    fn traverse(&self, scene: &Scene, ray: &Ray, any: bool) -> Option<Hit> {
+    fn query(&self, scene: &Scene, ray: &Ray, any: bool) -> Option<Hit> {
         if self.packets.is_empty() {
             return None;
         }
@@ -450,17 +442,16 @@ impl Triangles for Grid {
     }
 
     #[inline]
-    fn intersect(&self, scene: &Scene, ray: &Ray) -> Option<Hit> {
-        self.traverse(scene, ray, false)
-    }
-
-    #[inline]
-    fn occluded(&self, scene: &Scene, ray: &Ray) -> bool {
-        self.traverse(scene, ray, true).is_some()
+    fn traverse(&self, scene: &Scene, ray: &Ray, any: bool) -> Option<Hit> {
+        Self::query(self, scene, ray, any)
     }
 
     fn memory_bytes(&self) -> usize {
-        self.bytes()
+        self.tris.len() * std::mem::size_of::<[Vec3; 3]>()
+            + self.ids.len() * std::mem::size_of::<TriId>()
+            + self.offsets.len() * 4
+            + self.packets.len() * std::mem::size_of::<Tri4>()
+            + self.lanes.len() * std::mem::size_of::<[u32; 4]>()
     }
 }
 

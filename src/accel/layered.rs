@@ -23,10 +23,19 @@ pub trait Triangles: Send + Sync + Sized {
     const NAME: &'static str;
     /// The structure over `tris` (world space), with `ids` their identities.
     fn build(scene: &Scene, tris: Vec<[Vec3; 3]>, ids: Vec<TriId>) -> Self;
+    /// The closest accepted hit in the ray's `(t_min, t_max)`; with `any`, may return the first
+    /// found instead.
+    fn traverse(&self, scene: &Scene, ray: &Ray, any: bool) -> Option<Hit>;
     /// The closest accepted hit in the ray's `(t_min, t_max)`.
-    fn intersect(&self, scene: &Scene, ray: &Ray) -> Option<Hit>;
+    #[inline]
+    fn intersect(&self, scene: &Scene, ray: &Ray) -> Option<Hit> {
+        self.traverse(scene, ray, false)
+    }
     /// Whether any accepted hit lies in the ray's `(t_min, t_max)`.
-    fn occluded(&self, scene: &Scene, ray: &Ray) -> bool;
+    #[inline]
+    fn occluded(&self, scene: &Scene, ray: &Ray) -> bool {
+        self.traverse(scene, ray, true).is_some()
+    }
     /// Bytes held by the structure.
     fn memory_bytes(&self) -> usize;
 }

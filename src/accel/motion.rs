@@ -89,7 +89,7 @@ impl MovingSet {
                 t_max,
                 ..*ray
             };
-            if let Some(h) = m.bvh.traverse(scene, &local, any) {
+            if let Some(h) = m.bvh.query(scene, &local, any) {
                 best = Some(h);
                 if any {
                     break;

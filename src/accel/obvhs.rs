@@ -203,7 +203,9 @@ impl Triangles for Obvhs {
         Self::new(world_scale(scene), tris, ids, name, params)
     }
 
-    fn intersect(&self, scene: &Scene, ray: &Ray) -> Option<Hit> {
+    /// The closest hit whatever `any` says: `occluded` has its own traversal, which stops at the
+    /// first candidate.
+    fn traverse(&self, scene: &Scene, ray: &Ray, _any: bool) -> Option<Hit> {
         if self.tris.is_empty() {
             return None;
         }
