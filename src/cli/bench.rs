@@ -13,28 +13,43 @@ use crate::film::filter::FilterKind;
 use crate::render::job::{Basics, JobOptions, Overrides};
 use crate::sample::SamplerKind;
 
-/// An image size with a command's own defaults.
+/// An image size with a command's own defaults (W x H, given in each command's description).
+/// Not clap's `default_value_t`: its default string is a static inside a generic function, which
+/// every `Size<W, H>` shares, so all commands got the first one evaluated.
 #[derive(clap::Args, Debug)]
 pub struct Size<const W: usize, const H: usize> {
-    #[arg(long, default_value_t = W)]
-    pub width: usize,
-    #[arg(long, default_value_t = H)]
-    pub height: usize,
+    /// Image width in pixels [default: the command's own]
+    #[arg(long)]
+    width: Option<usize>,
+    /// Image height in pixels [default: the command's own]
+    #[arg(long)]
+    height: Option<usize>,
+}
+
+impl<const W: usize, const H: usize> Size<W, H> {
+    pub fn width(&self) -> usize {
+        self.width.unwrap_or(W)
+    }
+
+    pub fn height(&self) -> usize {
+        self.height.unwrap_or(H)
+    }
 }
 
 #[derive(Subcommand, Debug)]
 pub enum BenchCommand {
     /// Ray throughput of each backend on the same rays: build time and memory, Mrays/s per thread
-    /// count, agreement with Embree.
+    /// count, agreement with Embree. Primary rays of a 1024 x 768 image unless told.
     Rays(RaysArgs),
     /// Error against render time for each sampler and adaptive mode, against a cached converged
-    /// reference: CSV, log-log plot, fitted convergence slopes.
+    /// reference: CSV, log-log plot, fitted convergence slopes. 160 x 120 unless told.
     Convergence(ConvergenceArgs),
     /// How many ray/triangle tests cheap per-object tests (bounding sphere, box, nearest-first
-    /// order) save over brute force, on the same primary, shadow and diffuse rays.
+    /// order) save over brute force, on the same primary, shadow and diffuse rays (of a 320 x 240
+    /// image unless told).
     FastFailure(FastFailureArgs),
     /// What skipping unused features saves: a static, pinhole, opaque scene rendered as derived and
-    /// with motion, lens and thin-wall machinery forced on (the same image).
+    /// with motion, lens and thin-wall machinery forced on (the same image; 320 x 240 unless told).
     Features(FeaturesArgs),
 }
 
@@ -165,8 +180,8 @@ fn convergence(a: ConvergenceArgs) -> Result<()> {
     }
     let config = ConvergenceConfig {
         basics: Basics {
-            width: a.size.width.max(1),
-            height: a.size.height.max(1),
+            width: a.size.width().max(1),
+            height: a.size.height().max(1),
             max_depth: a.max_depth,
             seed: a.seed,
             backend: a.backend,
@@ -191,7 +206,7 @@ fn convergence(a: ConvergenceArgs) -> Result<()> {
 
 fn fast_failure(a: FastFailureArgs) -> Result<()> {
     use crate::bench::fastfail;
-    let (w, h) = (a.size.width.max(1), a.size.height.max(1));
+    let (w, h) = (a.size.width().max(1), a.size.height().max(1));
     let rows = fastfail::run(&a.input, w, h, a.rays)?;
     let objects = a.input.load()?.instances.len();
     super::print_out(&fastfail::table(&a.input, objects, &rows))
@@ -200,8 +215,8 @@ fn fast_failure(a: FastFailureArgs) -> Result<()> {
 fn features(a: FeaturesArgs) -> Result<()> {
     use crate::bench::features;
     let basics = Basics {
-        width: a.size.width.clamp(1, 8192),
-        height: a.size.height.clamp(1, 8192),
+        width: a.size.width().clamp(1, 8192),
+        height: a.size.height().clamp(1, 8192),
         spp: a.spp.clamp(1, 1 << 16),
         backend: a.backend,
         ..Basics::default()
@@ -228,8 +243,8 @@ fn rays(a: RaysArgs) -> Result<()> {
         },
         kinds: a.kinds,
         threads: a.threads,
-        width: a.size.width,
-        height: a.size.height,
+        width: a.size.width(),
+        height: a.size.height(),
         repeat: a.repeat.max(1),
         shutter: a.shutter,
         frame_time: a.frame_time,
@@ -240,4 +255,39 @@ fn rays(a: RaysArgs) -> Result<()> {
         report.write_json(&path)?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Cli, Command};
+    use clap::Parser;
+
+    fn bench(args: &[&str]) -> super::BenchCommand {
+        let argv = ["glint", "bench"].iter().chain(args).copied();
+        match Cli::try_parse_from(argv).unwrap().command {
+            Command::Bench(b) => b,
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn each_bench_command_keeps_its_own_default_size() {
+        let size = |b: super::BenchCommand| match b {
+            super::BenchCommand::Rays(a) => (a.size.width(), a.size.height()),
+            super::BenchCommand::Convergence(a) => (a.size.width(), a.size.height()),
+            super::BenchCommand::FastFailure(a) => (a.size.width(), a.size.height()),
+            super::BenchCommand::Features(a) => (a.size.width(), a.size.height()),
+        };
+        // Parsed in an order that once let the first default evaluated win everywhere.
+        assert_eq!(size(bench(&["rays", "x.glb"])), (1024, 768));
+        assert_eq!(
+            size(bench(&["convergence", "x.glb", "--out", "o"])),
+            (160, 120)
+        );
+        assert_eq!(size(bench(&["fast-failure", "x.glb"])), (320, 240));
+        assert_eq!(
+            size(bench(&["features", "x.glb", "--width", "7"])),
+            (7, 240)
+        );
+    }
 }
