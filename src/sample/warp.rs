@@ -1,5 +1,5 @@
 //! Warps from the unit square onto the domains the renderer samples (disk, hemisphere, cone,
-//! triangle), each beside its pdf on that domain and its inverse back to the square.
+//! triangle, spherical triangle), each beside its pdf on that domain and its inverse back to the square.
 //!
 //! The forward maps keep the arithmetic the renders were made with: images depend on their last bits.
 
@@ -109,6 +109,60 @@ pub fn uniform_triangle_inverse(b1: f32, b2: f32) -> Vec2 {
     Vec2::new(s * s, if s > 0.0 { b2 / s } else { 0.0 })
 }
 
+/// The solid angle of the spherical triangle with unit corners `a`, `b`, `c` (Van Oosterom and
+/// Strackee's formula: no arccosines, so accurate down to tiny triangles).
+pub fn spherical_triangle_area(a: Vec3, b: Vec3, c: Vec3) -> f32 {
+    (2.0 * a
+        .dot(b.cross(c))
+        .atan2(1.0 + a.dot(b) + a.dot(c) + b.dot(c)))
+    .abs()
+}
+
+/// A direction uniform in solid angle over the spherical triangle with unit corners `a`, `b`, `c`
+/// (Arvo 1995): `u.x` picks the sub-triangle of the right area, `u.y` the point along its arc; the
+/// pdf is one over `spherical_triangle_area`. None for a degenerate triangle.
+pub fn spherical_triangle(a: Vec3, b: Vec3, c: Vec3, u: Vec2) -> Option<Vec3> {
+    let (n_ab, n_bc, n_ca) = (
+        a.cross(b).try_normalize()?,
+        b.cross(c).try_normalize()?,
+        c.cross(a).try_normalize()?,
+    );
+    // The corner angles are between the planes of the edges meeting there.
+    let alpha = angle_between(n_ab, -n_ca);
+    let beta = angle_between(n_bc, -n_ab);
+    let gamma = angle_between(n_ca, -n_bc);
+    let area = alpha + beta + gamma - PI;
+    if !(area > 0.0) {
+        return None;
+    }
+    // The sub-triangle a, b, c' with area u.x * area: the angle at a stays alpha.
+    let ap = PI + u.x * area;
+    let (sin_ap, cos_ap) = ap.sin_cos();
+    let (sin_alpha, cos_alpha) = alpha.sin_cos();
+    let sin_phi = sin_ap * cos_alpha - cos_ap * sin_alpha;
+    let cos_phi = cos_ap * cos_alpha + sin_ap * sin_alpha;
+    let k1 = cos_phi + cos_alpha;
+    let k2 = sin_phi - sin_alpha * a.dot(b);
+    let cos_bp = ((k2 + (k2 * cos_phi - k1 * sin_phi) * cos_alpha)
+        / ((k2 * sin_phi + k1 * cos_phi) * sin_alpha))
+        .clamp(-1.0, 1.0);
+    let sin_bp = (1.0 - cos_bp * cos_bp).max(0.0).sqrt();
+    let cp = cos_bp * a + sin_bp * (c - a * c.dot(a)).try_normalize()?;
+    // Uniform along the arc from b to c' (in the cosine of the angle to b).
+    let cos_t = 1.0 - u.y * (1.0 - cp.dot(b));
+    let sin_t = (1.0 - cos_t * cos_t).max(0.0).sqrt();
+    Some(cos_t * b + sin_t * (cp - b * cp.dot(b)).try_normalize()?)
+}
+
+/// The angle between unit vectors, accurate near 0 and pi (half-chord arcsines).
+fn angle_between(v1: Vec3, v2: Vec3) -> f32 {
+    if v1.dot(v2) < 0.0 {
+        PI - 2.0 * ((v1 + v2).length() / 2.0).min(1.0).asin()
+    } else {
+        2.0 * ((v2 - v1).length() / 2.0).min(1.0).asin()
+    }
+}
+
 /// The azimuth of `w` around +z as a fraction of a turn, in [0, 1).
 fn turn_fraction(w: Vec3) -> f32 {
     let phi = w.y.atan2(w.x);
@@ -214,5 +268,60 @@ mod tests {
             assert!(b1 >= 0.0 && b2 >= 0.0 && b1 + b2 <= 1.0 + 1e-6);
             assert_round_trip(u, uniform_triangle_inverse(b1, b2), "uniform triangle");
         }
+    }
+
+    #[test]
+    fn spherical_triangle_is_uniform_on_the_octant() {
+        let (a, b, c) = (Vec3::X, Vec3::Y, Vec3::Z);
+        let area = spherical_triangle_area(a, b, c);
+        assert!((area as f64 - PI64 / 2.0).abs() < 1e-6, "{area}");
+        // Uniform over the octant is uniform in z and in azimuth: 4 x 4 equal bins.
+        let mut bins = [0u32; 16];
+        for u in grid(64) {
+            let w = spherical_triangle(a, b, c, u).unwrap();
+            assert!(
+                (w.length() - 1.0).abs() < 1e-5 && w.min_element() > -1e-5,
+                "{w}"
+            );
+            let phi = w.y.atan2(w.x).clamp(0.0, PI / 2.0 - 1e-6) / (PI / 2.0);
+            let k = ((w.z.clamp(0.0, 0.999_999) * 4.0) as usize) * 4 + (phi * 4.0) as usize;
+            bins[k] += 1;
+        }
+        for (k, &n) in bins.iter().enumerate() {
+            assert!(
+                (n as f64 - 256.0).abs() < 0.1 * 256.0,
+                "bin {k}: {n} of 4096"
+            );
+        }
+    }
+
+    #[test]
+    fn spherical_triangle_integrates_like_area_sampling() {
+        // A lopsided triangle seen from the origin; the integral of a smooth f over its solid angle
+        // by both samplers (f / pdf with the solid-angle pdf; f cos / d^2 / pdf_area by area).
+        let v = [
+            Vec3::new(0.3, -0.2, 1.0),
+            Vec3::new(2.0, 0.4, 0.6),
+            Vec3::new(-0.5, 1.5, 0.9),
+        ];
+        let f = |w: Vec3| 1.0 + 3.0 * w.x * w.x + w.y;
+        let [a, b, c] = v.map(|p| p.normalize());
+        let omega = spherical_triangle_area(a, b, c) as f64;
+        let n = (v[1] - v[0]).cross(v[2] - v[0]);
+        let area = 0.5 * n.length() as f64;
+        let (mut sph, mut flat) = (0.0f64, 0.0f64);
+        let cells = grid(128).count() as f64;
+        for u in grid(128) {
+            let w = spherical_triangle(a, b, c, u).unwrap();
+            sph += f(w) as f64 * omega;
+            let (b1, b2) = uniform_triangle(u);
+            let q = v[0] * (1.0 - b1 - b2) + v[1] * b1 + v[2] * b2;
+            let wq = q.normalize();
+            let cos = (n.normalize().dot(wq)).abs() as f64;
+            flat += f(wq) as f64 * cos / q.length_squared() as f64 * area;
+        }
+        let (sph, flat) = (sph / cells, flat / cells);
+        assert!((sph - flat).abs() < 2e-3 * flat, "{sph} vs {flat}");
+        assert!(spherical_triangle(a, a, c, Vec2::splat(0.5)).is_none());
     }
 }

@@ -284,3 +284,90 @@ fn environment_irradiance_matches_closed_forms() {
         e[1]
     );
 }
+
+/// Irradiance at the origin (plane facing +Y) from a uniform polygon of radiance `l` with corners
+/// `v`, by Lambert's formula: l/2 times the sum over edges of the angle they subtend times the
+/// cosine of their plane's normal with +Y.
+fn lambert_polygon(v: &[Vec3], l: f64) -> f64 {
+    let mut s = 0.0f64;
+    for i in 0..v.len() {
+        let (a, b) = (
+            v[i].as_dvec3().normalize(),
+            v[(i + 1) % v.len()].as_dvec3().normalize(),
+        );
+        let theta = a.cross(b).length().atan2(a.dot(b));
+        s += theta * a.cross(b).normalize().y;
+    }
+    0.5 * l * s.abs()
+}
+
+#[test]
+fn emissive_triangle_irradiance_matches_lambert_near_and_far() {
+    // Near (sampled by solid angle) and far (by area), each from both sides of the two-sided light.
+    for (v, what) in [
+        (
+            [
+                Vec3::new(-0.5, 0.3, -0.4),
+                Vec3::new(1.2, 0.5, 0.1),
+                Vec3::new(-0.2, 0.4, 0.9),
+            ],
+            "near",
+        ),
+        (
+            [
+                Vec3::new(-0.5, 3.0, -0.4),
+                Vec3::new(0.2, 3.5, 0.1),
+                Vec3::new(-0.2, 3.4, 0.3),
+            ],
+            "middle",
+        ),
+        (
+            [
+                Vec3::new(0.05, 0.003, -0.3),
+                Vec3::new(0.6, 0.003, -0.2),
+                Vec3::new(0.3, 0.003, 0.4),
+            ],
+            "grazing",
+        ),
+        (
+            [
+                Vec3::new(-0.05, 30.0, -0.04),
+                Vec3::new(0.12, 30.0, 0.01),
+                Vec3::new(-0.02, 30.0, 0.09),
+            ],
+            "far",
+        ),
+    ] {
+        for winding in [[0, 1, 2], [0, 2, 1]] {
+            let mut mesh = crate::scene::Mesh::default();
+            mesh.positions = winding.map(|i| v[i]).to_vec();
+            mesh.normals = vec![Vec3::Y; 3];
+            mesh.indices = vec![[0, 1, 2]];
+            let mut scene = crate::scene::generate::single_mesh_scene(mesh);
+            scene.materials[0].emissive = Vec3::splat(2.0);
+            let set = LightSet::new(&scene);
+            let n = 128;
+            let mut e = 0.0f64;
+            for (k, u) in grid(n).enumerate() {
+                let ls = set.sample(&scene, Vec3::ZERO, (k as f32 * 0.618_034).fract(), u);
+                let Some(ls) = ls else { continue };
+                // The pdf a BSDF-sampled ray would be weighed with, at the same point.
+                let q = ls.wi * ls.dist;
+                let nq = (v[1] - v[0]).cross(v[2] - v[0]).normalize();
+                let pdf = set.pdf_triangle(0, 0, Vec3::ZERO, q, nq);
+                assert!(
+                    (pdf - ls.pdf).abs() <= 1e-3 * ls.pdf,
+                    "{what}: {pdf} vs {}",
+                    ls.pdf
+                );
+                e += (luminance(ls.li) * ls.wi.y.max(0.0) / ls.pdf) as f64;
+            }
+            let e = e / (n * n) as f64;
+            let expected = lambert_polygon(&v, 2.0);
+            assert!(
+                (e - expected).abs() < 2e-3 * expected,
+                "{what}: {e} vs {expected}"
+            );
+        }
+    }
+}
