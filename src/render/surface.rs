@@ -429,6 +429,46 @@ mod tests {
         }
     }
 
+    /// KHR_materials_diffuse_transmission's textures: the factor times the factor texture's A, the
+    /// colour times the colour texture's RGB (decoded as the texture says); a factor of 0 at the
+    /// texel leaves the lobe off.
+    #[test]
+    fn diffuse_transmission_reads_its_texture_channels() {
+        let mut scene = Scene::default();
+        for (pixel, srgb) in [([10, 20, 30, 128], false), ([255, 128, 0, 7], true)] {
+            scene.textures.push(Texture {
+                name: "dt".into(),
+                width: 1,
+                height: 1,
+                pixels: vec![pixel],
+                srgb,
+                wrap_s: Wrap::Repeat,
+                wrap_t: Wrap::Repeat,
+            });
+        }
+        let uv = VertexAttrs::from_uv(Vec2::splat(0.5));
+        let mut layers = MaterialLayers {
+            diffuse_transmission: Some(crate::scene::layers::DiffuseTransmission {
+                factor: 0.8,
+                factor_tex: Some(TexRef::new(0)),
+                color: Vec3::new(1.0, 0.5, 1.0),
+                color_tex: Some(TexRef::new(1)),
+            }),
+            ..Default::default()
+        };
+        let dt = diffuse_transmission(&scene, &layers, uv).expect("on");
+        assert!((dt.factor - 0.8 * 128.0 / 255.0).abs() < 1e-6);
+        let green = crate::geometry::colour::srgb_to_linear(128.0 / 255.0);
+        assert!(
+            (dt.color - Vec3::new(1.0, 0.5 * green, 0.0))
+                .abs()
+                .max_element()
+                < 1e-5
+        );
+        layers.diffuse_transmission.as_mut().unwrap().factor = 0.0;
+        assert!(diffuse_transmission(&scene, &layers, uv).is_none());
+    }
+
     #[test]
     fn tilted_normals_are_bent_just_enough() {
         let ng = Vec3::Z;
