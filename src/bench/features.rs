@@ -83,6 +83,7 @@ fn without_lens(_: &mut Scene, cam: &mut Camera) {
 fn without_transmission(scene: &mut Scene, _: &mut Camera) {
     for m in &mut scene.materials {
         m.transmission = 0.0;
+        m.layers.diffuse_transmission = None;
     }
 }
 

@@ -152,7 +152,11 @@ impl<'a> Integrator<'a> {
                 }
                 break;
             };
-            let si = SurfaceInteraction::new(self.scene, &hit, &ray);
+            let mut si = SurfaceInteraction::new(self.scene, &hit, &ray);
+            let mut u_choice = sampler.get_1d(Dim::LightChoice, bounce);
+            if si.bsdf.dispersion.is_some() {
+                u_choice = st.follow_one_channel(&mut si, u_choice);
+            }
             if FEATURES {
                 features.hit(&si, bounce);
             }
@@ -167,7 +171,14 @@ impl<'a> Integrator<'a> {
                 seed: sampler.get_seed(bounce + 1),
                 time: ray.time,
             };
-            let nee = self.next_event::<THIN>(&si, &leave, bounce, st.beta, sampler, &mut rays);
+            let nee = self.next_event::<THIN>(
+                &si,
+                &leave,
+                (bounce, u_choice),
+                st.beta,
+                sampler,
+                &mut rays,
+            );
             if let Some(c) = nee {
                 l += c;
             }
@@ -196,18 +207,18 @@ impl<'a> Integrator<'a> {
         }
     }
 
-    /// Next-event estimation at `si`: `beta` times the MIS-weighted light a light sample brings, if
-    /// any (pointless when every lobe is a delta lobe, but the sample dimensions are drawn anyway).
+    /// Next-event estimation at `si` of bounce `bounce` with the light chosen by `u_choice`: `beta`
+    /// times the MIS-weighted light a light sample brings, if any (pointless when every lobe is a
+    /// delta lobe, but the sample dimensions are drawn anyway).
     fn next_event<const THIN: bool>(
         &self,
         si: &SurfaceInteraction,
         leave: &Leave,
-        bounce: u32,
+        (bounce, u_choice): (u32, f32),
         beta: Vec3,
         sampler: &mut dyn Sampler,
         rays: &mut u32,
     ) -> Option<Vec3> {
-        let u_choice = sampler.get_1d(Dim::LightChoice, bounce);
         let u_light = sampler.get_2d(Dim::Light, bounce);
         if si.bsdf.is_delta() {
             return None;
@@ -304,6 +315,29 @@ struct PathState {
     medium: Vec3,
     /// Product of the eta^2 factors refraction put into `beta`, kept out of Russian roulette.
     eta_scale: f32,
+    /// The RGB channel the path follows since its first dispersive vertex (KHR_materials_dispersion).
+    channel: Option<usize>,
+}
+
+impl PathState {
+    /// At a dispersive vertex: the first one picks a channel uniformly from `u` (probability 1/3,
+    /// so the throughput keeps 3 times that channel and nothing of the others), and every one
+    /// sees that channel's IOR. Returns what is left of `u`, uniform again, for the light choice.
+    fn follow_one_channel(&mut self, si: &mut SurfaceInteraction, u: f32) -> f32 {
+        let (c, rest) = match self.channel {
+            Some(c) => (c, u),
+            None => {
+                let c = ((u * 3.0) as usize).min(2);
+                let mut keep = Vec3::ZERO;
+                keep[c] = 3.0;
+                self.beta *= keep;
+                self.channel = Some(c);
+                (c, (u * 3.0 - c as f32).clamp(0.0, 1.0 - f32::EPSILON))
+            }
+        };
+        si.bsdf = si.bsdf.for_channel(c);
+        rest
+    }
 }
 
 impl Default for PathState {
@@ -313,6 +347,7 @@ impl Default for PathState {
             prev: None,
             medium: Vec3::ZERO,
             eta_scale: 1.0,
+            channel: None,
         }
     }
 }

@@ -3,7 +3,7 @@
 
 use glam::{Vec2, Vec3, Vec4Swizzles};
 
-use super::bsdf::{Bsdf, Coat, Iridescence, Sheen};
+use super::bsdf::{Bsdf, Coat, DiffuseTransmission, Iridescence, Sheen};
 use crate::geometry::Frame;
 use crate::geometry::{Hit, Ray};
 use crate::scene::layers::Anisotropy;
@@ -211,11 +211,27 @@ fn material_bsdf(
         metallic,
         roughness,
         specular,
-    )
-    .with_dielectric(transmission, mat.ior, mat.is_thin_walled(), entering);
+    );
+    bsdf.diffuse_transmission = diffuse_transmission(scene, &mat.layers, uv);
+    let mut bsdf = bsdf
+        .with_dielectric(transmission, mat.ior, mat.is_thin_walled(), entering)
+        .with_dispersion(mat.layers.dispersion);
     bsdf.absorption = mat.absorption();
     add_layers(scene, &mat.layers, uv, coat_n, &mut bsdf);
     bsdf
+}
+
+/// KHR_materials_diffuse_transmission's factor and colour at a point, textures applied; None where
+/// the factor comes to 0.
+fn diffuse_transmission(
+    scene: &Scene,
+    l: &MaterialLayers,
+    uv: VertexAttrs,
+) -> Option<DiffuseTransmission> {
+    let d = l.diffuse_transmission.as_ref()?;
+    let factor = d.factor * tex(scene, d.factor_tex, uv).map_or(1.0, |t| t.w);
+    let color = d.color * tex(scene, d.color_tex, uv).map_or(Vec3::ONE, |t| t.xyz());
+    (factor > 0.0).then(|| DiffuseTransmission::new(factor, color))
 }
 
 /// KHR_materials_specular's colour, the clearcoat, the sheen and the iridescent film, textures applied; a layer whose
@@ -350,7 +366,108 @@ fn tangent_frame(
 
 #[cfg(test)]
 mod tests {
+    use std::f32::consts::{FRAC_1_SQRT_2, FRAC_PI_2, FRAC_PI_4};
+
     use super::*;
+    use crate::scene::texture::{Texture, Wrap};
+
+    /// KHR_materials_anisotropy's convention: the direction lies in tangent space, turned
+    /// counter-clockwise by anisotropyRotation from the tangent towards the bitangent; the
+    /// texture's RG is a direction in [-1, 1] (turned the same way), its B scales the strength; and
+    /// the lobe is rougher along that direction (a point light's highlight stretches along it).
+    #[test]
+    fn anisotropy_direction_follows_the_spec_convention() {
+        let mut scene = Scene::default();
+        // RG (128, 255): the direction (0.004, 1), about the bitangent; B 128: strength x 0.5.
+        scene.textures.push(Texture {
+            name: "direction".into(),
+            width: 1,
+            height: 1,
+            pixels: vec![[128, 255, 128, 255]],
+            srgb: false,
+            wrap_s: Wrap::Repeat,
+            wrap_t: Wrap::Repeat,
+        });
+        let uv = VertexAttrs::from_uv(Vec2::splat(0.5));
+        let (t, b) = (Vec3::X, Vec3::Y);
+        let dir = |rotation: f32, texture: Option<TexRef>| {
+            let a = Anisotropy {
+                strength: 0.8,
+                rotation,
+                texture,
+            };
+            anisotropy_direction(&scene, &a, uv, (t, b))
+        };
+        let close = |a: Vec3, b: Vec3| (a.normalize() - b).length() < 1e-2;
+        let tex = Some(TexRef::new(0));
+        assert!(close(dir(0.0, None).1, Vec3::X));
+        assert!(close(dir(FRAC_PI_2, None).1, Vec3::Y));
+        let diagonal = Vec3::new(FRAC_1_SQRT_2, FRAC_1_SQRT_2, 0.0);
+        assert!(close(dir(FRAC_PI_4, None).1, diagonal));
+        assert!(close(dir(-FRAC_PI_2, None).1, -Vec3::Y));
+        let (s, d) = dir(0.0, tex);
+        assert!(close(d, Vec3::Y) && (s - 0.8 * 128.0 / 255.0).abs() < 1e-6);
+        assert!(close(dir(FRAC_PI_2, tex).1, -Vec3::X));
+        // The lobe at normal view: wider along the direction than across it.
+        let tilt = |a: Vec3| Vec3::Z * 0.35f32.cos() + a * 0.35f32.sin();
+        for (rotation, texture, axis) in [
+            (0.0, None, Vec3::X),
+            (FRAC_PI_2, None, Vec3::Y),
+            (0.0, tex, Vec3::Y),
+            (FRAC_PI_2, tex, -Vec3::X),
+        ] {
+            let (s, d) = dir(rotation, texture);
+            let bsdf = Bsdf::new(Frame::from_normal(Vec3::Z), Vec3::ONE, 1.0, 0.3, 1.0)
+                .with_anisotropy(s, d);
+            let along = bsdf.eval(Vec3::Z, tilt(axis)).0.x;
+            let across = bsdf.eval(Vec3::Z, tilt(Vec3::Z.cross(axis))).0.x;
+            assert!(
+                along > 2.0 * across,
+                "rotation {rotation} texture {}: along {along}, across {across}",
+                texture.is_some()
+            );
+        }
+    }
+
+    /// KHR_materials_diffuse_transmission's textures: the factor times the factor texture's A, the
+    /// colour times the colour texture's RGB (decoded as the texture says); a factor of 0 at the
+    /// texel leaves the lobe off.
+    #[test]
+    fn diffuse_transmission_reads_its_texture_channels() {
+        let mut scene = Scene::default();
+        for (pixel, srgb) in [([10, 20, 30, 128], false), ([255, 128, 0, 7], true)] {
+            scene.textures.push(Texture {
+                name: "dt".into(),
+                width: 1,
+                height: 1,
+                pixels: vec![pixel],
+                srgb,
+                wrap_s: Wrap::Repeat,
+                wrap_t: Wrap::Repeat,
+            });
+        }
+        let uv = VertexAttrs::from_uv(Vec2::splat(0.5));
+        let mut layers = MaterialLayers {
+            diffuse_transmission: Some(crate::scene::layers::DiffuseTransmission {
+                factor: 0.8,
+                factor_tex: Some(TexRef::new(0)),
+                color: Vec3::new(1.0, 0.5, 1.0),
+                color_tex: Some(TexRef::new(1)),
+            }),
+            ..Default::default()
+        };
+        let dt = diffuse_transmission(&scene, &layers, uv).expect("on");
+        assert!((dt.factor - 0.8 * 128.0 / 255.0).abs() < 1e-6);
+        let green = crate::geometry::colour::srgb_to_linear(128.0 / 255.0);
+        assert!(
+            (dt.color - Vec3::new(1.0, 0.5 * green, 0.0))
+                .abs()
+                .max_element()
+                < 1e-5
+        );
+        layers.diffuse_transmission.as_mut().unwrap().factor = 0.0;
+        assert!(diffuse_transmission(&scene, &layers, uv).is_none());
+    }
 
     #[test]
     fn tilted_normals_are_bent_just_enough() {

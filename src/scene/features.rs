@@ -31,7 +31,8 @@ features! {
     lens: "lens",
     /// Materials that refract (solid) or pass light (thin walls).
     transmission: "transmission",
-    /// Thin transmissive walls: shadow rays walk through surfaces (the integrator's thin path).
+    /// Thin walls with specular transmission: shadow rays walk through surfaces (the integrator's
+    /// thin path; diffusely transmitting walls scatter, so they do not need it).
     thin_walls: "thin walls",
     textures: "textures",
     /// Alpha cutouts or blending: hits are filtered during traversal.
@@ -57,7 +58,7 @@ impl Features {
             transmission: mats.iter().any(|m| m.is_transmissive()),
             thin_walls: mats
                 .iter()
-                .any(|m| m.is_transmissive() && m.is_thin_walled()),
+                .any(|m| m.is_specular_transmissive() && m.is_thin_walled()),
             textures: !scene.textures.is_empty(),
             alpha: (0..scene.meshes.len() as u32).any(|m| scene.mesh_needs_alpha_test(m)),
             emissive_triangles: scene
@@ -134,5 +135,26 @@ mod tests {
         });
         let f = Features::of(&scene, &camera);
         assert!(f.motion && f.lens && f.transmission && f.thin_walls);
+    }
+
+    /// Diffuse transmission makes a scene transmissive (lights behind such surfaces are sampled
+    /// through them), but it scatters, so shadow rays need not walk thin walls for it.
+    #[test]
+    fn diffuse_transmission_is_transmission_without_thin_wall_shadows() {
+        let mut scene = generate::single_mesh_scene(generate::icosphere(1, 0.0));
+        let camera = Camera::look_at(glam::Vec3::Z * 5.0, glam::Vec3::ZERO, glam::Vec3::Y, 0.7);
+        scene.materials[0].metallic = 0.0;
+        scene.materials[0].layers.diffuse_transmission =
+            Some(crate::scene::layers::DiffuseTransmission {
+                factor: 1.0,
+                factor_tex: None,
+                color: glam::Vec3::ONE,
+                color_tex: None,
+            });
+        let f = Features::of(&scene, &camera);
+        assert!(f.transmission && !f.thin_walls);
+        // A metal cannot transmit, diffusely or not.
+        scene.materials[0].metallic = 1.0;
+        assert!(!Features::of(&scene, &camera).transmission);
     }
 }

@@ -1,5 +1,5 @@
 //! The glTF material extensions layered over the metallic-roughness base: KHR_materials_specular's
-//! colour and textures, clearcoat, sheen, anisotropy, iridescence and diffuse transmission.
+//! colour and textures, clearcoat, sheen, anisotropy, iridescence, diffuse transmission, dispersion.
 
 use glam::Vec3;
 
@@ -55,6 +55,17 @@ pub struct Iridescence {
     pub thickness_tex: Option<TexRef>,
 }
 
+/// KHR_materials_diffuse_transmission: a Lambertian BTDF taking part of the base's diffuse light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DiffuseTransmission {
+    /// diffuseTransmissionFactor, times the A channel of `factor_tex`.
+    pub factor: f32,
+    pub factor_tex: Option<TexRef>,
+    /// diffuseTransmissionColorFactor (linear), times the RGB of `color_tex` (sRGB).
+    pub color: Vec3,
+    pub color_tex: Option<TexRef>,
+}
+
 /// Everything of a material beyond the metallic-roughness base; the default adds nothing.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MaterialLayers {
@@ -68,6 +79,9 @@ pub struct MaterialLayers {
     pub sheen: Option<Sheen>,
     pub anisotropy: Option<Anisotropy>,
     pub iridescence: Option<Iridescence>,
+    pub diffuse_transmission: Option<DiffuseTransmission>,
+    /// KHR_materials_dispersion's `dispersion` (20 / Abbe number; 0: none), for thick transmission.
+    pub dispersion: f32,
 }
 
 impl Default for MaterialLayers {
@@ -80,6 +94,8 @@ impl Default for MaterialLayers {
             sheen: None,
             anisotropy: None,
             iridescence: None,
+            diffuse_transmission: None,
+            dispersion: 0.0,
         }
     }
 }
@@ -99,6 +115,9 @@ impl MaterialLayers {
         }
         if let Some(i) = &mut self.iridescence {
             v.extend([&mut i.factor_tex, &mut i.thickness_tex]);
+        }
+        if let Some(d) = &mut self.diffuse_transmission {
+            v.extend([&mut d.factor_tex, &mut d.color_tex]);
         }
         v.into_iter()
     }

@@ -208,10 +208,17 @@ impl Material {
         self.emissive.max_element() > 0.0
     }
 
-    /// Whether light can pass through the surface somewhere (KHR_materials_transmission where it is
-    /// not a metal): metalness below 1 at some texel, which a metallic texture can give whatever the
-    /// factor.
+    /// Whether light can pass through the surface somewhere (KHR_materials_transmission or
+    /// KHR_materials_diffuse_transmission where it is not a metal): metalness below 1 at some
+    /// texel, which a metallic texture can give whatever the factor.
     pub fn is_transmissive(&self) -> bool {
+        (self.transmission > 0.0 || self.layers.diffuse_transmission.is_some())
+            && self.can_be_dielectric()
+    }
+
+    /// Whether a smooth part of the surface can pass light straight through (specular
+    /// transmission; diffuse transmission scatters, so shadow rays never see through it).
+    pub fn is_specular_transmissive(&self) -> bool {
         self.transmission > 0.0 && self.can_be_dielectric()
     }
 

@@ -6,6 +6,7 @@ use std::f32::consts::FRAC_1_PI;
 
 use glam::{Vec2, Vec3};
 
+use super::diffuse_transmission::DiffuseTransmission;
 use super::fresnel::{fresnel_exact, schlick};
 use super::microfacet::Ggx;
 use super::{choice_probabilities, luminance, Bsdf, BsdfSample};
@@ -112,9 +113,19 @@ impl Bsdf {
             fd = fd.min(0.95);
         }
         let under = (1.0 - self.metallic) * (1.0 - fd) * luminance(self.base);
+        let diffuse = match &self.diffuse_transmission {
+            None => under * (1.0 - self.transmission),
+            // The diffuse lobe also carries the transmitted colour, whatever the base colour.
+            Some(dt) => {
+                (1.0 - self.metallic)
+                    * (1.0 - fd)
+                    * (1.0 - self.transmission)
+                    * dt.weight(self.base)
+            }
+        };
         [
             luminance(self.fresnel(cos_o)),
-            under * (1.0 - self.transmission),
+            diffuse,
             under * self.transmission,
         ]
     }
@@ -161,6 +172,10 @@ impl Bsdf {
                     * FRAC_1_PI);
             let mut f = diffuse;
             let mut pdf = lobes.diffuse * i.z * FRAC_1_PI;
+            if let Some(dt) = &self.diffuse_transmission {
+                f = diffuse * (1.0 - dt.factor);
+                pdf = lobes.diffuse * dt.pdf(dt.through_probability(self.base), i);
+            }
             if !smooth {
                 let d = ggx.d(h);
                 f += self.fresnel(oh) * (d * ggx.g2(o, i) / (4.0 * o.z * i.z));
@@ -168,6 +183,42 @@ impl Bsdf {
             }
             return (f, pdf);
         }
+        let (f, pdf) = self.specular_btdf(o, i, &lobes);
+        match &self.diffuse_transmission {
+            None => (f, pdf),
+            Some(dt) => {
+                let (fd, pd) = self.diffuse_btdf(dt, o, i, &lobes);
+                (f + fd, pdf + pd)
+            }
+        }
+    }
+
+    /// KHR_materials_diffuse_transmission's BTDF below the specular layer, which takes its Fresnel
+    /// share at the half vector of `o` and `i` mirrored up (as for the thin specular BTDF), and its
+    /// pdf within the diffuse lobe.
+    fn diffuse_btdf(
+        &self,
+        dt: &DiffuseTransmission,
+        o: Vec3,
+        i: Vec3,
+        lobes: &Lobes,
+    ) -> (Vec3, f32) {
+        let h = (o + Vec3::new(i.x, i.y, -i.z)).normalize();
+        let weight = (1.0 - self.metallic)
+            * (1.0 - self.transmission)
+            * (1.0 - self.fresnel_dielectric(o.dot(h).max(0.0)));
+        let f = dt.eval(self.base, i) * weight;
+        (
+            f,
+            lobes.diffuse * dt.pdf(dt.through_probability(self.base), i),
+        )
+    }
+
+    /// Value and pdf of the specular transmission lobe (KHR_materials_transmission) for local `o`
+    /// above and `i` below the surface.
+    fn specular_btdf(&self, o: Vec3, i: Vec3, lobes: &Lobes) -> (Vec3, f32) {
+        let smooth = self.alpha == 0.0;
+        let ggx = self.ggx();
         if smooth || !self.transmits() || self.index_matched() {
             return (Vec3::ZERO, 0.0);
         }
@@ -256,6 +307,10 @@ impl Bsdf {
                 let cos_t = (1.0 - sin2_t).sqrt();
                 -o / self.eta + (oh / self.eta - cos_t) * h
             }
+        } else if let Some(dt) = &self.diffuse_transmission {
+            // What is left of u_lobe within the diffuse lobe picks its side.
+            let u_side = (u_lobe - lobes.reflect) / lobes.diffuse;
+            dt.sample(dt.through_probability(self.base), u_side, u)
         } else {
             cosine_hemisphere(u)
         };
@@ -263,7 +318,9 @@ impl Bsdf {
             return None;
         }
         let (f, pdf) = self.base_eval(o, i);
-        let eta = if i.z < 0.0 && !self.thin {
+        // A diffusely transmitted ray crosses without refracting (no radiance scaling).
+        let diffuse_through = !pick_reflect && !pick_transmit && i.z < 0.0;
+        let eta = if i.z < 0.0 && !self.thin && !diffuse_through {
             self.eta
         } else {
             1.0

@@ -5,6 +5,8 @@
 
 mod base;
 mod coat;
+mod diffuse_transmission;
+mod dispersion;
 mod fresnel;
 mod iridescence;
 mod layered;
@@ -16,6 +18,8 @@ mod tests;
 use glam::{Vec2, Vec3};
 
 pub use coat::{Coat, COAT_F0};
+pub use diffuse_transmission::DiffuseTransmission;
+pub use dispersion::{channel_iors, CHANNEL_WAVELENGTHS};
 pub use fresnel::fresnel_exact;
 pub use iridescence::Iridescence;
 pub use sheen::Sheen;
@@ -77,6 +81,11 @@ pub struct Bsdf {
     pub sheen: Option<Sheen>,
     /// KHR_materials_iridescence: a thin film whose Fresnel replaces the base's specular one.
     pub iridescence: Option<Iridescence>,
+    /// KHR_materials_diffuse_transmission: part of the base's diffuse light goes through.
+    pub diffuse_transmission: Option<DiffuseTransmission>,
+    /// KHR_materials_dispersion: the material's index of refraction per RGB channel (set only on
+    /// thick transmissive surfaces); a path follows one channel from its first dispersive vertex.
+    pub dispersion: Option<Vec3>,
 }
 
 /// One sampled direction.
@@ -119,12 +128,15 @@ impl Bsdf {
             coat: None,
             sheen: None,
             iridescence: None,
+            diffuse_transmission: None,
+            dispersion: None,
         }
     }
 
     /// The same surface with a transmissive dielectric base: `ior` of the material, `entering` when
     /// the ray arrives from outside (the front face), `thin` for thin-walled surfaces. The ior also
-    /// sets the reflectance of opaque dielectrics (KHR_materials_ior), so call this for every material.
+    /// sets the reflectance of opaque dielectrics (KHR_materials_ior), so call this for every material
+    /// (after setting `diffuse_transmission`).
     pub fn with_dielectric(
         mut self,
         transmission: f32,
@@ -138,7 +150,8 @@ impl Bsdf {
             1.5
         };
         self.transmission = transmission.clamp(0.0, 1.0);
-        self.thin = thin || self.transmission == 0.0;
+        // Diffuse transmission makes a volume's boundary transmissive too.
+        self.thin = thin || (self.transmission == 0.0 && self.diffuse_transmission.is_none());
         // Opaque and thin surfaces have no inside: every hit comes from the outside.
         self.outside = self.thin || entering;
         self.eta = if self.outside { ior } else { 1.0 / ior };
@@ -178,7 +191,7 @@ impl Bsdf {
 
     /// Whether light can arrive from behind the surface.
     pub fn transmits(&self) -> bool {
-        self.transmission > 0.0 && self.metallic < 1.0
+        (self.transmission > 0.0 || self.diffuse_transmission.is_some()) && self.metallic < 1.0
     }
 
     /// BSDF value and the pdf with which `sample` picks `wi`, both for world directions; delta lobes

@@ -1,5 +1,6 @@
 //! The BSDF's tests: sampling against eval by albedo, energy, reciprocity and delta lobes of the
-//! base; chi-square, furnace and spec transcriptions of the clearcoat, sheen and layered material.
+//! base; chi-square, furnace and spec transcriptions of the clearcoat, sheen and layered material
+//! (and, in `tests/`, of each extension's own lobe).
 
 use std::f32::consts::PI;
 
@@ -10,6 +11,8 @@ use super::*;
 use crate::geometry::Frame;
 
 mod anisotropy;
+mod diffuse_transmission;
+mod dispersion;
 mod iridescence;
 
 fn hash(i: u32) -> f32 {

@@ -1,11 +1,12 @@
 //! The KHR material extensions that add lobes or change the base's microfacets and Fresnel:
 //! anisotropy, iridescence, diffuse transmission and dispersion, read from the material's JSON.
 
+use glam::Vec3;
 use gltf::json::Value;
 
-use super::material::num;
+use super::material::{num, rgb};
 use super::Loader;
-use crate::scene::layers::{Anisotropy, Iridescence};
+use crate::scene::layers::{Anisotropy, DiffuseTransmission, Iridescence};
 use crate::scene::Material;
 
 impl Loader<'_> {
@@ -17,6 +18,26 @@ impl Loader<'_> {
         if let Some(i) = m.extension_value("KHR_materials_iridescence") {
             mat.layers.iridescence = self.iridescence(i, label);
         }
+        if let Some(d) = m.extension_value("KHR_materials_diffuse_transmission") {
+            mat.layers.diffuse_transmission = self.diffuse_transmission(d, label);
+        }
+        if let Some(d) = m.extension_value("KHR_materials_dispersion") {
+            mat.layers.dispersion = num(d, "dispersion", 0.0).max(0.0);
+        }
+    }
+
+    /// KHR_materials_diffuse_transmission's factors and textures; None when the factor is 0.
+    fn diffuse_transmission(&mut self, v: &Value, label: &str) -> Option<DiffuseTransmission> {
+        let factor = num(v, "diffuseTransmissionFactor", 0.0).clamp(0.0, 1.0);
+        if factor == 0.0 {
+            return None;
+        }
+        Some(DiffuseTransmission {
+            factor,
+            factor_tex: self.json_tex(v, "diffuseTransmissionTexture", false, label),
+            color: rgb(v, "diffuseTransmissionColorFactor", Vec3::ONE).clamp(Vec3::ZERO, Vec3::ONE),
+            color_tex: self.json_tex(v, "diffuseTransmissionColorTexture", true, label),
+        })
     }
 
     /// KHR_materials_anisotropy's strength, rotation and direction texture; None when the
