@@ -185,15 +185,22 @@ fn push_accessor(
     Ok(Index::new(accessor))
 }
 
-/// Decodes one primitive's stream and re-points its attributes and indices at the decoded data.
-fn decode_primitive(
-    root: &mut json::Root,
-    buffers: &mut Vec<Vec<u8>>,
-    (mi, pi): (usize, usize),
+/// An attribute the extension maps: semantic, name, Draco id, fallback accessor, its count.
+type Mapped = (
+    Checked<json::mesh::Semantic>,
+    String,
+    u32,
+    json::Accessor,
+    u32,
+);
+
+/// The primitive's attributes that the extension maps, each with its fallback accessor; an error
+/// when the extension maps one the primitive lacks.
+fn mapped_attributes(
+    root: &json::Root,
+    prim: &json::mesh::Primitive,
     ext: &Compressed,
-) -> Result<(), String> {
-    let prim = root.meshes[mi].primitives[pi].clone();
-    // The attributes the extension maps, with their fallback accessors.
+) -> Result<Vec<Mapped>, String> {
     let mut mapped = Vec::new();
     for (semantic, index) in &prim.attributes {
         let name = semantic.to_string();
@@ -211,49 +218,38 @@ fn decode_primitive(
             "the extension maps attribute {name}, which the primitive does not have"
         ));
     }
-    let points = mapped.iter().map(|m| m.4).max().unwrap_or(0);
+    Ok(mapped)
+}
+
+/// Decodes one primitive's stream and re-points its attributes and indices at the decoded data.
+fn decode_primitive(
+    root: &mut json::Root,
+    buffers: &mut Vec<Vec<u8>>,
+    (mi, pi): (usize, usize),
+    ext: &Compressed,
+) -> Result<(), String> {
+    let prim = root.meshes[mi].primitives[pi].clone();
+    let mapped = mapped_attributes(root, &prim, ext)?;
     let indices = match prim.indices {
         Some(i) => Some(accessor(root, i.value(), "indices")?),
         None => None,
     };
-    let max_faces = match &indices {
-        Some((_, count)) => *count / 3,
-        None => MAX_WORLD_TRIANGLES as u32,
+    let limits = Limits {
+        max_faces: indices
+            .as_ref()
+            .map_or(MAX_WORLD_TRIANGLES as u32, |(_, count)| *count / 3),
+        max_points: mapped.iter().map(|m| m.4).max().unwrap_or(0),
     };
     let stream = view_bytes(root, buffers, ext.buffer_view)?;
-    let limits = Limits {
-        max_faces,
-        max_points: points,
-    };
     let mesh = glint_draco::decode(stream, limits).map_err(|e| e.to_string())?;
     let mut fresh = Vec::with_capacity(mapped.len());
     for (semantic, name, id, a, count) in mapped {
-        if count != mesh.points() {
-            return Err(format!(
-                "{name}: the accessor has {count} elements but the Draco stream {} vertices",
-                mesh.points()
-            ));
-        }
-        let ty = component_type(&a).ok_or_else(|| format!("{name}: invalid component type"))?;
-        let components = match a.type_ {
-            Checked::Valid(t) => t.multiplicity(),
-            Checked::Invalid => return Err(format!("{name}: invalid accessor type")),
-        };
-        if mesh.components(id).is_none() {
-            return Err(format!(
-                "{name}: the Draco stream has no attribute with id {id}"
-            ));
-        }
-        let data = mesh
-            .attribute(id, ty, components)
-            .map_err(|e| format!("{name}: {e}"))?;
+        let data = attribute(&mesh, &name, id, &a, count)?;
         fresh.push((semantic, push_accessor(root, buffers, a, data)?));
     }
     let idx = mesh.indices().map_err(|e| e.to_string())?;
-    let (mut template, count) = match indices {
-        Some(i) => i,
-        None => (index_template(idx.len()), idx.len() as u32),
-    };
+    let (mut template, count) =
+        indices.unwrap_or_else(|| (index_template(idx.len()), idx.len() as u32));
     if count as usize != idx.len() {
         return Err(format!(
             "the indices accessor has {count} elements but the Draco stream {} ({} triangles)",
@@ -272,6 +268,35 @@ fn decode_primitive(
     }
     prim.indices = Some(indices);
     Ok(())
+}
+
+/// The decoded values of Draco attribute `id` in the layout of fallback accessor `a` (`count`
+/// elements, which must be the stream's vertex count).
+fn attribute(
+    mesh: &glint_draco::Mesh,
+    name: &str,
+    id: u32,
+    a: &json::Accessor,
+    count: u32,
+) -> Result<Vec<u8>, String> {
+    if count != mesh.points() {
+        return Err(format!(
+            "{name}: the accessor has {count} elements but the Draco stream {} vertices",
+            mesh.points()
+        ));
+    }
+    let ty = component_type(a).ok_or_else(|| format!("{name}: invalid component type"))?;
+    let components = match a.type_ {
+        Checked::Valid(t) => t.multiplicity(),
+        Checked::Invalid => return Err(format!("{name}: invalid accessor type")),
+    };
+    if mesh.components(id).is_none() {
+        return Err(format!(
+            "{name}: the Draco stream has no attribute with id {id}"
+        ));
+    }
+    mesh.attribute(id, ty, components)
+        .map_err(|e| format!("{name}: {e}"))
 }
 
 /// An index accessor for a compressed primitive that has none in the file (the stream always has).
