@@ -1,6 +1,8 @@
 //! The shared glTF-Draco variants (KHR_draco_mesh_compression) load, render without NaN, and render
 //! like their uncompressed originals at the same seed (BVH backend; the CLI compares the others).
 
+#![cfg(feature = "draco")]
+
 mod common;
 
 use std::path::Path;
