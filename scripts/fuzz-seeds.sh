@@ -7,7 +7,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 shared=${SHARED:-/work/shared/assets}
 c=$root/fuzz/corpus
 max=65536   # seeds over 64 KiB only slow the fuzzer down (and libFuzzer's max_len follows the largest)
-mkdir -p "$c"/{gltf_load,glb_load,obj_load,scene_toml,envmap_load,texture_decode,meshopt_decode,ktx2_decode}
+mkdir -p "$c"/{gltf_load,glb_load,obj_load,scene_toml,envmap_load,texture_decode,meshopt_decode,ktx2_decode,draco_decode}
 
 small() { find "$@" -type f -size -${max}c 2>/dev/null || true; }
 for f in $(small "$root/assets" "$shared" -name '*.gltf'); do cp "$f" "$c/gltf_load/$(basename "$f")"; done
@@ -61,6 +61,36 @@ for f in "$root"/assets/meshopt/*.glb; do
         { printf "\\x$(printf %02x $mode)\\x00\\x0b\\x40\\x00"; head -c 2048 "$f" | tail -c 1500; } > "$c/meshopt_decode/$(basename "$f" .glb)-$mode"
     done
 done
+# Draco: each primitive stream of the shared glTF-Draco files, behind the draco_decode header (vertex
+# count u16, triangle count u16, attribute layout: the index into common::DRACO_LAYOUTS whose
+# semantics-by-id match the file's).
+python3 - "$shared/gltf" "$c/draco_decode" <<'PY'
+import glob, json, os, struct, sys
+layouts = [["NORMAL", "POSITION"], ["NORMAL", "POSITION", "TEXCOORD_0"],
+           ["JOINTS_0", "NORMAL", "POSITION", "TEXCOORD_0", "WEIGHTS_0"],
+           ["JOINTS_0", "NORMAL", "POSITION", "WEIGHTS_0"], ["POSITION", "NORMAL", "TEXCOORD_0"]]
+for f in sorted(glob.glob(os.path.join(sys.argv[1], "*/glTF-Draco/*.gltf"))):
+    d = json.load(open(f))
+    for mi, m in enumerate(d["meshes"]):
+        for pi, p in enumerate(m["primitives"]):
+            e = p.get("extensions", {}).get("KHR_draco_mesh_compression")
+            if not e:
+                continue
+            by_id = [k for k, _ in sorted(e["attributes"].items(), key=lambda kv: kv[1])]
+            if by_id not in layouts:
+                continue
+            v = d["bufferViews"][e["bufferView"]]
+            data = open(os.path.join(os.path.dirname(f), d["buffers"][v["buffer"]]["uri"]), "rb").read()
+            o = v.get("byteOffset", 0)
+            acc = d["accessors"]
+            points = acc[p["attributes"]["POSITION"]]["count"]
+            faces = acc[p["indices"]]["count"] // 3
+            if points > 65535 or faces > 65535:
+                continue
+            head = struct.pack("<HHB", points, faces, layouts.index(by_id))
+            name = "%s-%d-%d" % (os.path.basename(f)[:-5], mi, pi)
+            open(os.path.join(sys.argv[2], name), "wb").write(head + data[o:o + v["byteLength"]])
+PY
 # What was found before (and fixed) seeds its target too.
 for d in "$root"/fuzz/regressions/*/; do cp "$d"* "$c/$(basename "$d")/" 2>/dev/null || true; done
 for t in "$c"/*; do echo "$(basename "$t"): $(ls "$t" | wc -l) seeds, $(du -sk "$t" | cut -f1) KiB"; done

@@ -195,16 +195,16 @@ fn unsupported_required_extension() {
     let dir = tempfile::tempdir().unwrap();
     let p = write(
         dir.path(),
-        "draco.glb",
+        "ibl.glb",
         &glb_bytes(
-            r#", "extensionsUsed": ["KHR_draco_mesh_compression"],
-                 "extensionsRequired": ["KHR_draco_mesh_compression"]"#,
+            r#", "extensionsUsed": ["EXT_lights_image_based"],
+                 "extensionsRequired": ["EXT_lights_image_based"]"#,
             &TRI,
         ),
     );
     load_err(
         &p,
-        &["requires unsupported extension KHR_draco_mesh_compression"],
+        &["requires unsupported extension EXT_lights_image_based"],
     );
 }
 

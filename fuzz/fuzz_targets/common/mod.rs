@@ -29,6 +29,7 @@ pub const TARGETS: &[(&str, Target)] = &[
     ("envmap_load", envmap),
     ("texture_decode", texture),
     ("meshopt_decode", meshopt),
+    ("draco_decode", draco),
 ];
 
 /// A path in a folder that holds nothing, to name in-memory inputs: relative references resolve
@@ -155,6 +156,98 @@ pub fn meshopt(data: &[u8]) {
     if let Ok(out) = decode(&data[5.min(data.len())..], count, stride, mode, filter) {
         assert_eq!(out.len(), count * stride);
     }
+}
+
+/// The attribute layouts (semantic, glTF component type, type) by Draco id of the shared
+/// glTF-Draco files: Box; Duck; CesiumMan; RiggedSimple; MorphPrimitivesTest's second primitive.
+const DRACO_LAYOUTS: [&[(&str, u32, &str)]; 5] = [
+    &[("NORMAL", 5126, "VEC3"), ("POSITION", 5126, "VEC3")],
+    &[
+        ("NORMAL", 5126, "VEC3"),
+        ("POSITION", 5126, "VEC3"),
+        ("TEXCOORD_0", 5126, "VEC2"),
+    ],
+    &[
+        ("JOINTS_0", 5123, "VEC4"),
+        ("NORMAL", 5126, "VEC3"),
+        ("POSITION", 5126, "VEC3"),
+        ("TEXCOORD_0", 5126, "VEC2"),
+        ("WEIGHTS_0", 5126, "VEC4"),
+    ],
+    &[
+        ("JOINTS_0", 5123, "VEC4"),
+        ("NORMAL", 5126, "VEC3"),
+        ("POSITION", 5126, "VEC3"),
+        ("WEIGHTS_0", 5126, "VEC4"),
+    ],
+    &[
+        ("POSITION", 5126, "VEC3"),
+        ("NORMAL", 5126, "VEC3"),
+        ("TEXCOORD_0", 5126, "VEC2"),
+    ],
+];
+
+/// A KHR_draco_mesh_compression stream through the glTF loader: the first 5 bytes give the vertex
+/// count (u16), the triangle count (u16) and the attribute layout its fallback accessors declare;
+/// the rest is the Draco stream, the BIN chunk of a one-primitive .glb.
+pub fn draco(data: &[u8]) {
+    if data.len() < 5 {
+        return;
+    }
+    let points = u16::from_le_bytes([data[0], data[1]]);
+    let faces = u16::from_le_bytes([data[2], data[3]]) as u32;
+    let layout = DRACO_LAYOUTS[data[4] as usize % DRACO_LAYOUTS.len()];
+    let stream = &data[5..];
+    let mut accessors = vec![format!(
+        r#"{{"componentType": 5125, "count": {}, "type": "SCALAR"}}"#,
+        faces * 3
+    )];
+    let (mut attributes, mut ids) = (Vec::new(), Vec::new());
+    for (id, (name, ty, kind)) in layout.iter().enumerate() {
+        accessors.push(format!(
+            r#"{{"componentType": {ty}, "count": {points}, "type": "{kind}"}}"#
+        ));
+        attributes.push(format!(r#""{name}": {}"#, id + 1));
+        ids.push(format!(r#""{name}": {id}"#));
+    }
+    let json = format!(
+        r#"{{"asset": {{"version": "2.0"}},
+  "extensionsUsed": ["KHR_draco_mesh_compression"],
+  "extensionsRequired": ["KHR_draco_mesh_compression"],
+  "buffers": [{{"byteLength": {len}}}],
+  "bufferViews": [{{"buffer": 0, "byteLength": {len}}}],
+  "accessors": [{accessors}],
+  "meshes": [{{"primitives": [{{"attributes": {{{attributes}}}, "indices": 0,
+    "extensions": {{"KHR_draco_mesh_compression": {{"bufferView": 0, "attributes": {{{ids}}}}}}}}}]}}],
+  "nodes": [{{"mesh": 0}}], "scenes": [{{"nodes": [0]}}], "scene": 0}}"#,
+        len = stream.len(),
+        accessors = accessors.join(", "),
+        attributes = attributes.join(", "),
+        ids = ids.join(", "),
+    );
+    glb(&glb_bytes(json.as_bytes(), stream));
+}
+
+/// A .glb of a JSON chunk and a BIN chunk (each padded to 4 bytes).
+pub fn glb_bytes(json: &[u8], bin: &[u8]) -> Vec<u8> {
+    let pad = |b: &[u8], with: u8| {
+        let mut v = b.to_vec();
+        v.resize(b.len().div_ceil(4) * 4, with);
+        v
+    };
+    let (j, b) = (pad(json, b' '), pad(bin, 0));
+    let total = 12 + 8 + j.len() + 8 + b.len();
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&(total as u32).to_le_bytes());
+    out.extend_from_slice(&(j.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&j);
+    out.extend_from_slice(&(b.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend_from_slice(&b);
+    out
 }
 
 /// A 2x2 grid of quads facing +Z with UVs over [0, 2]^2, for the image targets.

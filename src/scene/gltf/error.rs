@@ -30,6 +30,8 @@ pub enum GltfError {
     Accessor(#[from] AccessorError),
     #[error(transparent)]
     Meshopt(#[from] MeshoptError),
+    #[error(transparent)]
+    Draco(#[from] DracoError),
     /// A problem inside the element `at` (a primitive, a skin, an animation channel).
     #[error("{at}: {source}")]
     At { at: String, source: Box<GltfError> },
@@ -245,6 +247,15 @@ pub enum MeshoptError {
     Stream { view: usize, problem: String },
     #[error("too many buffers")]
     TooMany,
+}
+
+/// A KHR_draco_mesh_compression primitive that cannot be decoded; `at` names the mesh and
+/// primitive.
+#[derive(Debug, Error)]
+#[error("{at}: KHR_draco_mesh_compression: {problem}")]
+pub struct DracoError {
+    pub at: String,
+    pub problem: String,
 }
 
 /// Why an image is ignored (a warning, not an error: the texture is left out).

@@ -9,6 +9,8 @@
 mod accessor;
 mod animation;
 mod buffers;
+#[cfg(feature = "draco")]
+mod draco;
 pub mod error;
 mod image;
 mod instancing;
@@ -58,6 +60,8 @@ const SUPPORTED: &[&str] = &[
     "EXT_mesh_gpu_instancing",
     "EXT_meshopt_compression",
     "KHR_meshopt_compression",
+    #[cfg(feature = "draco")]
+    "KHR_draco_mesh_compression",
     "EXT_texture_webp",
     "KHR_texture_basisu",
 ];
@@ -98,6 +102,8 @@ fn load_inner(path: &Path, bytes: &[u8], animation: usize) -> Result<Scene, Gltf
     let (doc, required) = document(json_bytes)?;
     let mut buffers = accessor::read_buffers(&doc, base, blob)?;
     let doc = meshopt::decode_views(doc, &mut buffers)?;
+    #[cfg(feature = "draco")]
+    let doc = draco::decode_primitives(doc, &mut buffers)?;
     let buffers = buffers::Buffers::new(buffers);
     Loader {
         doc: &doc,
@@ -134,13 +140,20 @@ fn document(json: &[u8]) -> Result<(gltf::Document, Vec<String>), GltfError> {
     let required = std::mem::take(&mut root.extensions_required);
     image::prefer_extension_sources(&mut root);
     let fallback = root.clone();
+    // Draco primitives' accessors have no data of their own: the decoder fills them in.
+    #[cfg(feature = "draco")]
+    let draco_views = draco::fallback_views(&root);
+    #[cfg(not(feature = "draco"))]
+    let draco_views: Vec<String> = Vec::new();
     let doc = match gltf::Document::from_json(root) {
         Ok(doc) => Ok(doc),
         // POSITION's min/max are required by the spec but unused here: tolerate files without them.
         Err(gltf::Error::Validation(errs))
             if errs.iter().all(|(p, e)| {
                 matches!(e, gltf::json::validation::Error::Missing)
-                    && (p.as_str().ends_with(".min") || p.as_str().ends_with(".max"))
+                    && (p.as_str().ends_with(".min")
+                        || p.as_str().ends_with(".max")
+                        || draco_views.iter().any(|v| v == p.as_str()))
             }) =>
         {
             Ok(gltf::Document::from_json_without_validation(fallback))

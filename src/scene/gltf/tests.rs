@@ -253,12 +253,12 @@ fn unsupported_required_extension_is_a_clear_error() {
         &TRI,
         &[0, 1, 2],
         r#""nodes": [{"mesh": 0}],
-           "extensionsUsed": ["KHR_draco_mesh_compression", "KHR_materials_volume"],
-           "extensionsRequired": ["KHR_materials_volume", "KHR_draco_mesh_compression"]"#,
+           "extensionsUsed": ["EXT_lights_image_based", "KHR_materials_volume"],
+           "extensionsRequired": ["KHR_materials_volume", "EXT_lights_image_based"]"#,
     );
     let e = Scene::load(&p).unwrap_err().to_string();
     assert!(
-        e.contains("requires unsupported extension KHR_draco_mesh_compression"),
+        e.contains("requires unsupported extension EXT_lights_image_based"),
         "{e}"
     );
     assert!(e.contains("t.gltf"), "{e}");
