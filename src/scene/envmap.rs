@@ -151,7 +151,20 @@ enum EnvMapError {
     Hdr(image::ImageError),
     #[error(transparent)]
     Size(#[from] super::decode::DecodeError),
+    #[error("tiles of {} x {} pixels in an image of {} x {}", tile.0, tile.1, image.0, image.1)]
+    Tiles {
+        tile: (u64, u64),
+        image: (usize, usize),
+    },
+    #[error(
+        "the header declares {chunks} chunks, more than the {bytes} bytes of the file can index"
+    )]
+    Chunks { chunks: usize, bytes: usize },
 }
+
+/// The largest tile an EXR may use whatever its image's size (256 x 256: tiles larger than their
+/// image only waste the decoder's memory).
+const MAX_TILE_PIXELS: u64 = 1 << 16;
 
 fn read_exr(bytes: &[u8]) -> Result<(usize, usize, Vec<Vec3>), EnvMapError> {
     use exr::prelude::{ReadChannels, ReadLayers, Vec2};
@@ -161,6 +174,27 @@ fn read_exr(bytes: &[u8]) -> Result<(usize, usize, Vec<Vec3>), EnvMapError> {
     for header in &meta.headers {
         let size = header.layer_size;
         super::decode::check_size(size.width() as u64, size.height() as u64)?;
+        // The reader allocates a whole tile to decode into, whatever the image's size.
+        if let exr::meta::BlockDescription::Tiles(t) = header.blocks {
+            let (w, h) = (t.tile_size.width() as u64, t.tile_size.height() as u64);
+            let image = size.area() as u64;
+            if w.saturating_mul(h) > image.max(MAX_TILE_PIXELS) {
+                return Err(EnvMapError::Tiles {
+                    tile: (w, h),
+                    image: (size.width(), size.height()),
+                });
+            }
+        }
+    }
+    // Each chunk (a tile or a band of lines, of every mip or rip level) has an 8-byte entry in the
+    // offset tables the reader allocates up front: a file shorter than its tables declares chunks it
+    // does not hold (tiles of 1 x 1 pixel in rip maps reach gigabytes from a header of 500 bytes).
+    let chunks: usize = meta.headers.iter().map(|h| h.chunk_count).sum();
+    if chunks.saturating_mul(8) > bytes.len() {
+        return Err(EnvMapError::Chunks {
+            chunks,
+            bytes: bytes.len(),
+        });
     }
     let img = exr::prelude::read()
         .no_deep_data()
@@ -246,6 +280,20 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("missing.exr"), "{e}");
+    }
+
+    #[test]
+    fn an_exr_whose_tiles_dwarf_its_image_is_refused_from_its_header() {
+        // A fuzzer's 500-byte file: an 8 x 4 image in tiles of 64 x 27 million pixels, which the
+        // reader allocated (1.8 GB) before it found the data missing.
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("fuzz/regressions/envmap_load/exr-tile-64x27m-in-8x4-image.exr");
+        let bytes = std::fs::read(&path).unwrap();
+        let e = EnvMap::from_bytes(&path, &bytes).unwrap_err().to_string();
+        assert!(
+            e.contains("tiles of 64 x 27262976 pixels in an image of 8 x 4"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -52,7 +52,11 @@ pub fn is_ktx2(bytes: &[u8]) -> bool {
 
 /// Decodes level 0 (first layer, first face) of a KTX2 file to RGBA8.
 pub fn decode(bytes: &[u8]) -> Result<Rgba8, Ktx2Error> {
-    let reader = ktx2::Reader::new(bytes).map_err(|e| Ktx2Error::Container(e.to_string()))?;
+    // The `ktx2` crate panics on some malformed data format descriptors (a texel block dimension
+    // of 255 overflows its `dim + 1`); that is a bad file like any other.
+    let reader = crate::scene::quiet_panic::catch(|| ktx2::Reader::new(bytes))
+        .ok_or_else(|| Ktx2Error::Container("malformed data format descriptor".into()))?
+        .map_err(|e| Ktx2Error::Container(e.to_string()))?;
     let header = reader.header();
     let (width, height) = (header.pixel_width, header.pixel_height.max(1));
     if header.pixel_depth > 1 {

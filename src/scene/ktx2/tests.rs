@@ -159,3 +159,15 @@ proptest::proptest! {
         }
     }
 }
+
+#[test]
+fn a_descriptor_the_ktx2_reader_panics_on_is_an_error() {
+    // A fuzzer's file: a texel block dimension of 255, which `ktx2` turns into 255 + 1.
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fuzz/regressions/texture_decode/ktx2-dfd-texel-dimension-255.ktx2");
+    let e = decode(&std::fs::read(path).unwrap()).unwrap_err();
+    assert!(
+        matches!(&e, Ktx2Error::Container(m) if m.contains("descriptor")),
+        "{e}"
+    );
+}
