@@ -5,6 +5,7 @@
 
 mod base;
 mod coat;
+mod energy;
 mod fresnel;
 mod iridescence;
 mod layered;
@@ -21,6 +22,7 @@ pub use iridescence::Iridescence;
 pub use sheen::Sheen;
 
 use crate::geometry::Frame;
+use crate::scene::ShadingModel;
 
 /// Probabilities of choosing among lobes or layers with rough weights `w` (positive total): in
 /// proportion to the weights, mixed with a tenth of a uniform choice among the non-zero ones so that
@@ -77,6 +79,8 @@ pub struct Bsdf {
     pub sheen: Option<Sheen>,
     /// KHR_materials_iridescence: a thin film whose Fresnel replaces the base's specular one.
     pub iridescence: Option<Iridescence>,
+    /// The layering and GGX scattering model (the glTF spec's by default).
+    pub model: ShadingModel,
 }
 
 /// One sampled direction.
@@ -119,6 +123,7 @@ impl Bsdf {
             coat: None,
             sheen: None,
             iridescence: None,
+            model: ShadingModel::default(),
         }
     }
 

@@ -11,6 +11,7 @@ use crate::geometry::Frame;
 
 mod anisotropy;
 mod iridescence;
+mod shading_model;
 
 fn hash(i: u32) -> f32 {
     (crate::geometry::mix64(i as u64) >> 40) as f32 / (1u64 << 24) as f32
