@@ -26,7 +26,8 @@ fn white_dielectric() -> Bsdf {
 
 /// The glTF spec's fresnel_mix weights the diffuse by 1 - F(V.H), which at grazing views is more
 /// than what the specular layer leaves: a white dielectric reflects 1.069 at cos 0.4 and 1.224 at
-/// cos 0.15 (pinned here, as the README says). Albedo scaling keeps it at most 1.
+/// cos 0.15 (pinned here, as the README says). Albedo scaling keeps it at most 1 (and, its estimate
+/// being the Fresnel at N.V, which is more than a rough lobe reflects at grazing, below 1 there).
 #[test]
 fn spec_layering_exceeds_one_at_grazing_and_albedo_scaling_does_not() {
     let spec = white_dielectric();
@@ -41,14 +42,17 @@ fn spec_layering_exceeds_one_at_grazing_and_albedo_scaling_does_not() {
             let a = albedo(&b, view(cos), 200_000);
             eprintln!("albedo-scaled white dielectric ({ggx:?}), cos {cos}: {a:.4}");
             assert!(a < 1.0 + 5e-3, "{ggx:?} cos {cos}: {a}");
-            assert!(a > 0.85, "{ggx:?} cos {cos}: {a}");
+            assert!(a > 0.5, "{ggx:?} cos {cos}: {a}");
+            if cos == 1.0 {
+                assert!((a - 1.0).abs() < 0.01, "{ggx:?} normal incidence: {a}");
+            }
         }
     }
 }
 
-/// A white metal of roughness 1 in the white furnace: single scattering loses a fifth to a third
-/// of the light (and its figure agrees with the compensation table's own integration), multiple
-/// scattering reflects 1 from every view.
+/// A white metal of roughness 1 in the white furnace: single scattering loses a quarter to more
+/// than half of the light (and its figure agrees with the compensation table's own integration),
+/// multiple scattering reflects 1 from every view.
 #[test]
 fn multiple_scattering_ggx_brings_a_rough_white_metal_to_one() {
     let metal = || Bsdf::new(Frame::from_normal(Vec3::Z), Vec3::ONE, 1.0, 1.0, 1.0);
@@ -60,9 +64,14 @@ fn multiple_scattering_ggx_brings_a_rough_white_metal_to_one() {
             view(cos),
             200_000,
         );
-        eprintln!("rough white metal, cos {cos}: single {single:.4} (table {table:.4}), multi {multi:.4}");
+        eprintln!(
+            "rough white metal, cos {cos}: single {single:.4} (table {table:.4}), multi {multi:.4}"
+        );
         assert!(single < 0.85, "cos {cos}: single {single}");
-        assert!((single - table).abs() < 0.01, "cos {cos}: {single} vs {table}");
+        assert!(
+            (single - table).abs() < 0.01,
+            "cos {cos}: {single} vs {table}"
+        );
         assert!((multi - 1.0).abs() < 0.01, "cos {cos}: multi {multi}");
     }
 }
@@ -74,16 +83,18 @@ fn multiple_scattering_keeps_sampling_consistent_with_eval() {
     let frame = Frame::from_normal(Vec3::Z);
     let cases = [
         Bsdf::new(frame, Vec3::new(0.9, 0.6, 0.3), 1.0, 0.7, 1.0),
-        Bsdf::new(frame, Vec3::new(0.5, 0.7, 0.9), 0.0, 0.6, 1.0).with_dielectric(
-            0.0, 1.5, false, true,
-        ),
+        Bsdf::new(frame, Vec3::new(0.5, 0.7, 0.9), 0.0, 0.6, 1.0)
+            .with_dielectric(0.0, 1.5, false, true),
     ];
     for b in cases {
         for layering in [Layering::Spec, Layering::Albedo] {
             let b = with_model(b, layering, GgxScattering::Multi);
             for cos in [0.9f32, 0.3] {
                 let (is, uni) = albedos(&b, view(cos), 160_000);
-                assert!((is - uni).abs() < 0.01 + 0.02 * uni, "{layering:?} cos {cos}: {is} vs {uni}");
+                assert!(
+                    (is - uni).abs() < 0.01 + 0.02 * uni,
+                    "{layering:?} cos {cos}: {is} vs {uni}"
+                );
                 assert!(is < 1.0 + 5e-3, "{layering:?} cos {cos}: {is}");
             }
         }
@@ -96,14 +107,15 @@ fn multiple_scattering_keeps_sampling_consistent_with_eval() {
 fn thick_transmission_tints_at_each_interface() {
     let base = Vec3::new(0.9, 0.5, 0.2);
     let glass = |entering: bool| {
-        Bsdf::new(Frame::from_normal(Vec3::Z), base, 0.0, 0.0, 1.0).with_dielectric(
-            1.0, 1.5, false, entering,
-        )
+        Bsdf::new(Frame::from_normal(Vec3::Z), base, 0.0, 0.0, 1.0)
+            .with_dielectric(1.0, 1.5, false, entering)
     };
     let through = |b: &Bsdf| {
         // The transmission lobe's share of u_lobe is its top end; a delta lobe's f |cos| is its
         // weight (radiance scaled by 1 / eta^2 on the way in, eta^2 on the way out).
-        let s = b.sample(Vec3::Z, 1.0 - 1e-6, Vec2::new(hash(1), hash(2))).unwrap();
+        let s = b
+            .sample(Vec3::Z, 1.0 - 1e-6, Vec2::new(hash(1), hash(2)))
+            .unwrap();
         assert!(s.delta && s.wi.z < 0.0);
         s.f * s.wi.z.abs()
     };
