@@ -5,7 +5,12 @@ they are beyond glint's own seed-to-seed noise. A bench, not a test (minutes per
 
     accuracy.py OUTDIR [MODEL ...] [--glint target/release/glint] [--bpy PYTHON_WITH_BPY]
                 [--spp 256] [--width 320] [--height 240] [--depth 8] [--fov 35]
-                [--distribution importer|GGX] [--tint importer|squared] [--absorption importer|spec]
+                [--distribution importer|GGX|MULTI_GGX] [--tint importer|squared]
+                [--absorption importer|spec] [--anisotropy importer|spec]
+                [--glint-args '--layering albedo --ggx multi'] [--cycles-from OTHER_OUTDIR]
+
+--glint-args are added to both glint renders; --cycles-from reuses another run's cycles.exr per model
+(made with the same size, spp, depth and Cycles settings) instead of rendering Cycles again.
 
 MODEL is a name under ../shared/assets/gltf (the default list is issue 17's) or NAME=PATH. Needs numpy,
 OpenEXR and Pillow in this Python; Blender's bpy in the --bpy one. Per model in OUTDIR/NAME: glint.exr
@@ -23,6 +28,8 @@ import argparse
 import json
 import math
 import os
+import shlex
+import shutil
 import struct
 import subprocess
 import sys
@@ -149,14 +156,17 @@ def measure(a, name, path, out):
     for seed, exr in ((1, "glint.exr"), (2, "glint2.exr")):
         cmd = [a.glint, "render", str(path), "-o", str(d / exr), *size, *view, "--up", "0,1,0",
                "--default-lights", "off", "--env", str(out / "world.exr"), "--max-depth", str(a.depth),
-               "--seed", str(seed), "--filter", "box", "--threads", "2"]
+               "--seed", str(seed), "--filter", "box", "--threads", "2", *shlex.split(a.glint_args)]
         if not run(cmd, d / f"glint{seed}.log"):
             return {"model": name, "error": "glint failed: " + (d / f"glint{seed}.log").read_text()[-300:]}
     cmd = [a.bpy, str(HERE / "render_cycles.py"), str(path), str(d / "cycles.exr"), *size,
            "--bounces", str(a.depth - 1), *view, "--threads", "2", "--distribution", a.distribution,
-           "--tint", a.tint, "--absorption", a.absorption, "--report", str(d / "cycles.json"),
-           "--lights", "COMPAT" if name in COMPAT_LIGHTS else "SPEC"]
-    if not run(cmd, d / "cycles.log"):
+           "--tint", a.tint, "--absorption", a.absorption, "--anisotropy", a.anisotropy,
+           "--report", str(d / "cycles.json"), "--lights", "COMPAT" if name in COMPAT_LIGHTS else "SPEC"]
+    reuse = Path(a.cycles_from) / name / "cycles.exr" if a.cycles_from else None
+    if reuse is not None and reuse.is_file():
+        shutil.copyfile(reuse, d / "cycles.exr")
+    elif not run(cmd, d / "cycles.log"):
         return {"model": name, "error": "Cycles failed: " + (d / "cycles.log").read_text()[-300:]}
     g, ga = read_exr(d / "glint.exr")
     g2, g2a = read_exr(d / "glint2.exr")
@@ -171,7 +181,8 @@ def measure(a, name, path, out):
 
 def table(results, a):
     lines = [f"{a.width}x{a.height}, {a.spp} spp, glint --max-depth {a.depth} (Cycles {a.depth - 1} bounces), "
-             f"distribution {a.distribution}, tint {a.tint}, absorption {a.absorption}", "",
+             f"distribution {a.distribution}, tint {a.tint}, absorption {a.absorption}, "
+             f"anisotropy {a.anisotropy}, glint args '{a.glint_args}'", "",
              "| model | glint/Cycles mean | rmad | glint noise | excess | within targets |",
              "|---|---|---|---|---|---|"]
     for r in results:
@@ -195,7 +206,10 @@ def main():
     ap.add_argument("--height", type=int, default=240)
     ap.add_argument("--depth", type=int, default=8)
     ap.add_argument("--fov", type=float, default=35.0)
-    ap.add_argument("--distribution", default="GGX", choices=["importer", "GGX"])
+    ap.add_argument("--distribution", default="GGX", choices=["importer", "GGX", "MULTI_GGX"])
+    ap.add_argument("--anisotropy", default="importer", choices=["importer", "spec"])
+    ap.add_argument("--glint-args", default="")
+    ap.add_argument("--cycles-from", default="")
     ap.add_argument("--tint", default="importer", choices=["importer", "squared"])
     ap.add_argument("--absorption", default="spec", choices=["importer", "spec"])
     a = ap.parse_args()

@@ -8,8 +8,8 @@ imports its Cycles add-on as the module `cycles`, and this script's folder is fi
 
     render_cycles.py MODEL OUT.exr --width W --height H --spp N --eye X,Y,Z --look-at X,Y,Z --fov DEG
               --bounces B [--threads 2] [--seed 1] [--world 1.0] [--distribution importer|GGX]
-              [--tint importer|squared] [--absorption importer|spec] [--lights SPEC|COMPAT]
-              [--report T.json]
+              [--tint importer|squared] [--absorption importer|spec] [--anisotropy importer|spec]
+              [--lights SPEC|COMPAT] [--report T.json]
 
 Why each setting:
 - Unbiased: no sample clamping, no glossy filter, caustics on, light threshold 0, no adaptive
@@ -23,6 +23,12 @@ Why each setting:
   interface), glint by the base colour at every interface; squaring the base colour of fully
   transmissive materials makes Cycles do what glint does. `--absorption spec`: the importer's volume
   absorption is (1 - c) / d; the KHR_materials_volume spec's is -ln(c) / d.
+- `--anisotropy spec`: the importer hands KHR_materials_anisotropy's strength to Blender's
+  Anisotropic input, whose model (Burley: alpha_x = a / s, alpha_y = a s, s = sqrt(1 - 0.9 A)) is not
+  the spec's (alpha_t = mix(a, 1, strength^2) along the tangent, alpha_b = a), and leaves the
+  tangent unlinked (Cycles' default tangent, not the mesh's) unless there is an anisotropy texture.
+  This sets Roughness and Anisotropic so that Blender's alpha_x, alpha_y are the spec's (where the
+  ratio fits Blender's largest, 10) and links the UV map's tangent; unlinked inputs only.
 - `--lights COMPAT` reads 1 cd as 1 W/sr (glint's reading); SPEC divides by 683 lm/W.
 """
 import argparse
@@ -48,6 +54,7 @@ def parse_args():
     ap.add_argument("--distribution", default="importer", choices=["importer", "GGX", "MULTI_GGX"])
     ap.add_argument("--tint", default="importer", choices=["importer", "squared"])
     ap.add_argument("--absorption", default="importer", choices=["importer", "spec"])
+    ap.add_argument("--anisotropy", default="importer", choices=["importer", "spec"])
     ap.add_argument("--lights", default="SPEC", choices=["SPEC", "COMPAT"])
     ap.add_argument("--report", default="")
     return ap.parse_args()
@@ -112,6 +119,27 @@ def spec_absorption(materials):
     return changed
 
 
+def spec_anisotropy(materials):
+    # glint's MIN_ALPHA: a smooth anisotropic surface becomes a rough line-shaped lobe.
+    changed = []
+    for m, n in principled(materials):
+        strength, rough = n.inputs["Anisotropic"], n.inputs["Roughness"]
+        if strength.is_linked or rough.is_linked or strength.default_value <= 0:
+            continue
+        s = min(strength.default_value, 1.0)
+        alpha = max(rough.default_value ** 2, 1e-3)
+        alpha_t = alpha + (1 - alpha) * s * s
+        rough.default_value = (alpha_t * alpha) ** 0.25
+        strength.default_value = min(1.0, (1 - alpha / alpha_t) / 0.9)
+        tangent = n.inputs["Tangent"]
+        if not tangent.is_linked:
+            node = m.node_tree.nodes.new("ShaderNodeTangent")
+            node.direction_type, node.uv_map = "UV_MAP", "UVMap"
+            m.node_tree.links.new(node.outputs["Tangent"], tangent)
+        changed.append(m.name)
+    return changed
+
+
 def setup_camera(scene, eye, look_at, fov):
     """A camera at `eye` looking at `look_at` (glTF/OBJ coordinates, +Y up), vertical fov degrees."""
     import bpy
@@ -170,6 +198,7 @@ def main():
             n.distribution = a.distribution
     tinted = square_transmissive_tint(bpy.data.materials) if a.tint == "squared" else []
     absorbing = spec_absorption(bpy.data.materials) if a.absorption == "spec" else []
+    aniso = spec_anisotropy(bpy.data.materials) if a.anisotropy == "spec" else []
     world = bpy.data.worlds.new("peer")
     world.use_nodes = True
     world.node_tree.nodes["Background"].inputs["Color"].default_value = (a.world,) * 3 + (1.0,)
@@ -183,6 +212,7 @@ def main():
         "model": a.model, "blender": bpy.app.version_string, "render_s": time.time() - t0,
         "total_s": time.time() - t_start, "spp": a.spp, "bounces": a.bounces,
         "distribution": a.distribution, "tint_squared": tinted, "spec_absorption": absorbing,
+        "spec_anisotropy": aniso,
         "load_average": os.getloadavg()[0],
     }
     print(json.dumps(report))

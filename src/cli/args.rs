@@ -9,6 +9,7 @@ use crate::film::aov::FeatureImages;
 use crate::film::denoise::{DenoiseError, DenoiseQuality, Denoiser};
 use crate::film::{Display, Image, ViewTransform};
 use crate::render::job::{DefaultLights, LensOptions, Overrides, Time};
+use crate::scene::{GgxScattering, Layering};
 
 /// What `render` and `turntable` share: image size, sampling, backend, seed, lights, exposure,
 /// threads. Those a scene file may set are `Option`s: given or not, the job decides (the command
@@ -56,6 +57,14 @@ pub struct Args {
     /// Material variant to render (KHR_materials_variants; `glint info` lists a file's variants).
     #[arg(long, value_name = "NAME")]
     pub variant: Option<String>,
+    /// How the dielectric specular layer weights the diffuse under it: the glTF spec's fresnel_mix
+    /// or Blender-style albedo scaling [default: spec]
+    #[arg(long, value_enum)]
+    pub layering: Option<Layering>,
+    /// GGX scattering of the specular lobes: the glTF spec's single scattering, or multiple
+    /// scattering's energy restored (Turquin 2019) [default: single]
+    #[arg(long, value_enum)]
+    pub ggx: Option<GgxScattering>,
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -74,6 +83,8 @@ impl Args {
             max_depth: self.max_depth,
             seed: self.seed,
             backend: self.backend,
+            layering: self.layering,
+            ggx: self.ggx,
             ..Default::default()
         }
     }

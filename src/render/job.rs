@@ -175,6 +175,7 @@ impl Setup {
         basics.validate()?;
         let camera = opts.view.camera(&scene, basics.aspect())?;
         light(&mut scene, &camera, environment, opts.default_lights);
+        scene.shading = basics.shading();
         Ok(Setup {
             scene,
             camera,

@@ -217,6 +217,7 @@ fn material_bsdf(
         .with_dielectric(transmission, mat.ior, mat.is_thin_walled(), entering)
         .with_dispersion(mat.layers.dispersion);
     bsdf.absorption = mat.absorption();
+    bsdf.model = scene.shading;
     add_layers(scene, &mat.layers, uv, coat_n, &mut bsdf);
     bsdf
 }

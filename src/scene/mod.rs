@@ -16,6 +16,7 @@ pub mod limits;
 pub mod mesh;
 pub mod obj;
 mod quiet_panic;
+pub mod shading;
 pub mod texture;
 pub mod transform;
 pub mod variants;
@@ -32,6 +33,7 @@ pub use envmap::EnvMap;
 pub use error::LoadError;
 pub use layers::MaterialLayers;
 pub use mesh::{Mesh, VertexAttrs};
+pub use shading::{GgxScattering, Layering, ShadingModel};
 pub use texture::{Texture, Wrap};
 pub use variants::MaterialVariants;
 
@@ -519,6 +521,9 @@ pub struct Scene {
     pub settings: desc::FileSettings,
     /// KHR_materials_variants: the material sets the meshes can be dressed in.
     pub variants: MaterialVariants,
+    /// The shading model the render uses (the glTF specification's unless a scene file or the
+    /// command line chooses otherwise; set when a render is set up).
+    pub shading: ShadingModel,
 }
 
 impl Scene {

@@ -7,10 +7,12 @@ use std::f32::consts::FRAC_1_PI;
 use glam::{Vec2, Vec3};
 
 use super::diffuse_transmission::DiffuseTransmission;
+use super::energy;
 use super::fresnel::{fresnel_exact, schlick};
 use super::microfacet::Ggx;
 use super::{choice_probabilities, luminance, Bsdf, BsdfSample};
 use crate::sample::warp::cosine_hemisphere;
+use crate::scene::{GgxScattering, Layering};
 
 /// Probabilities of the three lobes (reflection, diffuse, transmission).
 #[derive(Clone, Copy, Debug)]
@@ -105,6 +107,39 @@ impl Bsdf {
         self.fresnel_dielectric_rgb(cos).lerp(metal, self.metallic)
     }
 
+    /// What the dielectric specular layer leaves the diffuse under it, at view cosine `cos_o` and
+    /// microfacet cosine `oh`: 1 - F(V.H) (the spec's fresnel_mix), or 1 - E(N.V) (albedo scaling,
+    /// E estimated by the Fresnel at N.V as Cycles does, times the multiple-scattering share).
+    fn diffuse_share(&self, cos_o: f32, oh: f32) -> f32 {
+        match self.model.layering {
+            Layering::Spec => 1.0 - self.fresnel_dielectric(oh),
+            Layering::Albedo => {
+                let mut e = self.fresnel_dielectric(cos_o);
+                if self.model.ggx == GgxScattering::Multi && self.alpha > 0.0 {
+                    let fss = self.specular * energy::dielectric_average(self.eta);
+                    e *= energy::darkening(&self.ggx(), cos_o, fss);
+                }
+                (1.0 - e).max(0.0)
+            }
+        }
+    }
+
+    /// Multiple-scattering factor of the reflection lobe at view cosine `cos_o` (1 under the spec's
+    /// single scattering): the dielectric and metal Fresnel averages mixed by metalness.
+    fn reflection_compensation(&self, cos_o: f32) -> Vec3 {
+        if self.model.ggx == GgxScattering::Single {
+            return Vec3::ONE;
+        }
+        let f_avg = energy::dielectric_average(self.eta);
+        let dielectric = if self.specular_color == Vec3::ONE {
+            Vec3::splat(self.specular * f_avg)
+        } else {
+            self.specular * self.tinted(f_avg)
+        };
+        let fss = dielectric.lerp(energy::schlick_average(self.base), self.metallic);
+        energy::compensation(&self.ggx(), cos_o, fss)
+    }
+
     /// The base's rough lobe weights at `wo` (reflection, diffuse, transmission).
     fn lobe_weights(&self, cos_o: f32) -> [f32; 3] {
         let mut fd = self.fresnel_dielectric(cos_o);
@@ -168,7 +203,7 @@ impl Bsdf {
             let diffuse = self.base
                 * ((1.0 - self.metallic)
                     * (1.0 - self.transmission)
-                    * (1.0 - self.fresnel_dielectric(oh))
+                    * self.diffuse_share(o.z, oh)
                     * FRAC_1_PI);
             let mut f = diffuse;
             let mut pdf = lobes.diffuse * i.z * FRAC_1_PI;
@@ -178,7 +213,9 @@ impl Bsdf {
             }
             if !smooth {
                 let d = ggx.d(h);
-                f += self.fresnel(oh) * (d * ggx.g2(o, i) / (4.0 * o.z * i.z));
+                f += self.fresnel(oh)
+                    * self.reflection_compensation(o.z)
+                    * (d * ggx.g2(o, i) / (4.0 * o.z * i.z));
                 pdf += lobes.reflect * ggx.g1(o) * d / (4.0 * o.z);
             }
             return (f, pdf);
@@ -206,7 +243,7 @@ impl Bsdf {
         let h = (o + Vec3::new(i.x, i.y, -i.z)).normalize();
         let weight = (1.0 - self.metallic)
             * (1.0 - self.transmission)
-            * (1.0 - self.fresnel_dielectric(o.dot(h).max(0.0)));
+            * self.diffuse_share(o.z, o.dot(h).max(0.0));
         let f = dt.eval(self.base, i) * weight;
         (
             f,

@@ -7,6 +7,7 @@ mod base;
 mod coat;
 mod diffuse_transmission;
 mod dispersion;
+mod energy;
 mod fresnel;
 mod iridescence;
 mod layered;
@@ -25,6 +26,7 @@ pub use iridescence::Iridescence;
 pub use sheen::Sheen;
 
 use crate::geometry::Frame;
+use crate::scene::ShadingModel;
 
 /// Probabilities of choosing among lobes or layers with rough weights `w` (positive total): in
 /// proportion to the weights, mixed with a tenth of a uniform choice among the non-zero ones so that
@@ -86,6 +88,8 @@ pub struct Bsdf {
     /// KHR_materials_dispersion: the material's index of refraction per RGB channel (set only on
     /// thick transmissive surfaces); a path follows one channel from its first dispersive vertex.
     pub dispersion: Option<Vec3>,
+    /// The layering and GGX scattering model (the glTF spec's by default).
+    pub model: ShadingModel,
 }
 
 /// One sampled direction.
@@ -130,6 +134,7 @@ impl Bsdf {
             iridescence: None,
             diffuse_transmission: None,
             dispersion: None,
+            model: ShadingModel::default(),
         }
     }
 

@@ -14,6 +14,7 @@ mod anisotropy;
 mod diffuse_transmission;
 mod dispersion;
 mod iridescence;
+mod shading_model;
 
 fn hash(i: u32) -> f32 {
     (crate::geometry::mix64(i as u64) >> 40) as f32 / (1u64 << 24) as f32

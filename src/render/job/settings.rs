@@ -8,6 +8,7 @@ use crate::accel::Backend;
 use crate::film::filter::FilterKind;
 use crate::sample::SamplerKind;
 use crate::scene::desc::FileSettings;
+use crate::scene::{GgxScattering, Layering, ShadingModel};
 
 /// Largest accepted image edge, in pixels.
 pub const MAX_EDGE: usize = 32_768;
@@ -57,6 +58,10 @@ overridable! {
     sampler: SamplerKind,
     filter: FilterKind,
     backend: Backend,
+    /// How the dielectric specular layer weights the diffuse under it.
+    layering: Layering,
+    /// Single- or multiple-scattering GGX.
+    ggx: GgxScattering,
 }
 
 impl Default for Basics {
@@ -71,6 +76,8 @@ impl Default for Basics {
             sampler: SamplerKind::default(),
             filter: FilterKind::default(),
             backend: Backend::default_available(),
+            layering: Layering::default(),
+            ggx: GgxScattering::default(),
         }
     }
 }
@@ -93,6 +100,14 @@ impl Basics {
 
     pub fn aspect(&self) -> f32 {
         self.width as f32 / self.height as f32
+    }
+
+    /// The shading model these settings choose.
+    pub fn shading(&self) -> ShadingModel {
+        ShadingModel {
+            layering: self.layering,
+            ggx: self.ggx,
+        }
     }
 }
 
@@ -119,6 +134,8 @@ pub fn file_overrides(
         sampler: s.sampler,
         filter: s.filter,
         backend,
+        layering: s.layering,
+        ggx: s.ggx,
     })
 }
 

@@ -5,6 +5,7 @@ use serde::Deserialize;
 
 use crate::film::filter::FilterKind;
 use crate::sample::SamplerKind;
+use crate::scene::shading::{GgxScattering, Layering};
 
 /// Render settings a scene file may carry; command-line flags given explicitly win over them.
 #[derive(Clone, Debug, Default, PartialEq, Deserialize)]
@@ -20,6 +21,10 @@ pub struct FileSettings {
     #[serde(default, deserialize_with = "value_enum")]
     pub filter: Option<FilterKind>,
     pub backend: Option<String>,
+    #[serde(default, deserialize_with = "value_enum")]
+    pub layering: Option<Layering>,
+    #[serde(default, deserialize_with = "value_enum")]
+    pub ggx: Option<GgxScattering>,
 }
 
 /// A `clap::ValueEnum` read from its command-line name, so the file and the flags spell values alike.
