@@ -30,7 +30,7 @@ for t in "${targets[@]}"; do
     # With -jobs=1 libFuzzer runs the fuzzing in a child whose output goes to fuzz-0.log.
     f0="artifacts/$t/fuzz-0.log"
     [ -f "$f0" ] && cat "$f0" >>"$log" && rm -f "$f0"
-    cpu=$(awk '{ printf "%.1f", ($1 + $2) / 60 }' "artifacts/$t/time")
+    cpu=$(tail -1 "artifacts/$t/time" | awk '{ printf "%.1f", ($1 + $2) / 60 }')
     execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
     crashes=$(ls "artifacts/$t" | grep -c -E '^(crash|oom|timeout|leak|slow-unit)-' || true)
     printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$(date -u +%FT%TZ)" "$t" "$cpu" "${execs:-?}" "$(ls "corpus/$t" | wc -l)" "$crashes" | tee -a runs.tsv

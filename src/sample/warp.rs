@@ -132,7 +132,8 @@ pub fn spherical_triangle(a: Vec3, b: Vec3, c: Vec3, u: Vec2) -> Option<Vec3> {
     let beta = angle_between(n_bc, -n_ab);
     let gamma = angle_between(n_ca, -n_bc);
     let area = alpha + beta + gamma - PI;
-    if !(area > 0.0) {
+    // Also refuses a NaN area.
+    if area.is_nan() || area <= 0.0 {
         return None;
     }
     // The sub-triangle a, b, c' with area u.x * area: the angle at a stays alpha.

@@ -339,10 +339,12 @@ fn emissive_triangle_irradiance_matches_lambert_near_and_far() {
         ),
     ] {
         for winding in [[0, 1, 2], [0, 2, 1]] {
-            let mut mesh = crate::scene::Mesh::default();
-            mesh.positions = winding.map(|i| v[i]).to_vec();
-            mesh.normals = vec![Vec3::Y; 3];
-            mesh.indices = vec![[0, 1, 2]];
+            let mesh = crate::scene::Mesh {
+                positions: winding.map(|i| v[i]).to_vec(),
+                normals: vec![Vec3::Y; 3],
+                indices: vec![[0, 1, 2]],
+                ..Default::default()
+            };
             let mut scene = crate::scene::generate::single_mesh_scene(mesh);
             scene.materials[0].emissive = Vec3::splat(2.0);
             let set = LightSet::new(&scene);
