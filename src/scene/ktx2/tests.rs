@@ -171,3 +171,12 @@ fn a_descriptor_the_ktx2_reader_panics_on_is_an_error() {
         "{e}"
     );
 }
+
+#[test]
+fn an_overlong_code_in_an_etc1s_stream_is_an_error_not_an_abort() {
+    // A fuzzer's file: Basis's decode_vlc reached `assert(0)`, which aborted the whole process
+    // before the transcoder was built with NDEBUG.
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fuzz/regressions/texture_decode/ktx2-etc1s-vlc-overlong-assert.ktx2");
+    assert!(decode(&std::fs::read(path).unwrap()).is_err());
+}
