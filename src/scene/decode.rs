@@ -93,8 +93,9 @@ pub fn decode_rgba8(bytes: &[u8]) -> Result<Rgba8, DecodeError> {
         return Ok(img);
     }
     let reader = || image::ImageReader::new(Cursor::new(bytes)).with_guessed_format();
-    let format = reader()?.format();
-    let (w, h) = reader()?.into_dimensions()?;
+    let probe = reader()?;
+    let format = probe.format();
+    let (w, h) = probe.into_dimensions()?;
     check_size(w.into(), h.into())?;
     if let Some(format) = format {
         check_justified(format, w.into(), h.into(), bytes.len())?;
