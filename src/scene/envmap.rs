@@ -160,11 +160,18 @@ enum EnvMapError {
         "the header declares {chunks} chunks, more than the {bytes} bytes of the file can index"
     )]
     Chunks { chunks: usize, bytes: usize },
+    #[error("bands of {lines} lines in an image of {} x {}", image.0, image.1)]
+    Bands { lines: u64, image: (usize, usize) },
+    #[error("a DWA block declares {declared} bytes, more than its {bound}-byte tile or band can hold")]
+    DwaCounter { declared: u64, bound: u64 },
 }
 
 /// The largest tile an EXR may use whatever its image's size (256 x 256: tiles larger than their
 /// image only waste the decoder's memory).
 const MAX_TILE_PIXELS: u64 = 1 << 16;
+
+/// The largest band of lines an EXR may use whatever its image's size (256 lines of 8192 pixels).
+const MAX_BAND_PIXELS: u64 = 1 << 21;
 
 fn read_exr(bytes: &[u8]) -> Result<(usize, usize, Vec<Vec3>), EnvMapError> {
     use exr::prelude::{ReadChannels, ReadLayers, Vec2};
@@ -174,15 +181,29 @@ fn read_exr(bytes: &[u8]) -> Result<(usize, usize, Vec<Vec3>), EnvMapError> {
     for header in &meta.headers {
         let size = header.layer_size;
         super::decode::check_size(size.width() as u64, size.height() as u64)?;
-        // The reader allocates a whole tile to decode into, whatever the image's size.
-        if let exr::meta::BlockDescription::Tiles(t) = header.blocks {
-            let (w, h) = (t.tile_size.width() as u64, t.tile_size.height() as u64);
-            let image = size.area() as u64;
-            if w.saturating_mul(h) > image.max(MAX_TILE_PIXELS) {
-                return Err(EnvMapError::Tiles {
-                    tile: (w, h),
-                    image: (size.width(), size.height()),
-                });
+        // The reader allocates a whole tile or band of lines to read and decode into, whatever the
+        // image's size.
+        let image = size.area() as u64;
+        match header.blocks {
+            exr::meta::BlockDescription::Tiles(t) => {
+                let (w, h) = (t.tile_size.width() as u64, t.tile_size.height() as u64);
+                if w.saturating_mul(h) > image.max(MAX_TILE_PIXELS) {
+                    return Err(EnvMapError::Tiles {
+                        tile: (w, h),
+                        image: (size.width(), size.height()),
+                    });
+                }
+            }
+            // A band keeps its full count of lines even past the image's last line (DWAB's 256
+            // lines in an image of 4 x 820,000 pixels made 1.7 GB).
+            exr::meta::BlockDescription::ScanLines => {
+                let lines = header.compression.scan_lines_per_block() as u64;
+                if lines.saturating_mul(size.width() as u64) > image.max(MAX_BAND_PIXELS) {
+                    return Err(EnvMapError::Bands {
+                        lines,
+                        image: (size.width(), size.height()),
+                    });
+                }
             }
         }
     }
@@ -196,6 +217,7 @@ fn read_exr(bytes: &[u8]) -> Result<(usize, usize, Vec<Vec3>), EnvMapError> {
             bytes: bytes.len(),
         });
     }
+    check_dwa_blocks(bytes, &meta)?;
     let img = exr::prelude::read()
         .no_deep_data()
         .largest_resolution_level()
@@ -222,6 +244,62 @@ fn read_exr(bytes: &[u8]) -> Result<(usize, usize, Vec<Vec3>), EnvMapError> {
         size.height(),
         img.layer_data.channel_data.pixels.1,
     ))
+}
+
+/// DWA blocks open with counters of their sections' sizes, from which the reader allocates before it
+/// inflates anything (a 682-byte file reached 1 GB). A block decodes to at most its tile or band of
+/// lines, padded to the 8 x 8 DCT blocks, so any counter above twice that (room for RLE's expansion)
+/// or a compressed section longer than the block is refused before the real read.
+fn check_dwa_blocks(bytes: &[u8], meta: &exr::meta::MetaData) -> Result<(), EnvMapError> {
+    use exr::block::chunk::CompressedBlock;
+    use exr::compression::Compression::{DWAA, DWAB};
+    let dwa = |h: &exr::meta::header::Header| matches!(h.compression, DWAA(_) | DWAB(_));
+    if !meta.headers.iter().any(dwa) {
+        return Ok(());
+    }
+    let bounds: Vec<u64> = (meta.headers.iter())
+        .map(|h| {
+            let (w, lines) = match h.blocks {
+                exr::meta::BlockDescription::Tiles(t) => (t.tile_size.width(), t.tile_size.height()),
+                exr::meta::BlockDescription::ScanLines => {
+                    (h.layer_size.width(), h.compression.scan_lines_per_block())
+                }
+            };
+            let pad = |n: usize| (n as u64).div_ceil(8) * 8;
+            2 * pad(w) * pad(lines) * h.channels.bytes_per_pixel as u64 + 4096
+        })
+        .collect();
+    let chunks = exr::block::read(Cursor::new(bytes), false)
+        .and_then(|r| r.all_chunks(false))
+        .map_err(EnvMapError::Exr)?;
+    for chunk in chunks {
+        let chunk = chunk.map_err(EnvMapError::Exr)?;
+        let (Some(h), Some(&bound)) = (
+            meta.headers.get(chunk.layer_index),
+            bounds.get(chunk.layer_index),
+        ) else {
+            continue;
+        };
+        let data = match &chunk.compressed_block {
+            CompressedBlock::ScanLine(b) if dwa(h) => &b.compressed_pixels_le,
+            CompressedBlock::Tile(b) if dwa(h) => &b.compressed_pixels_le,
+            _ => continue,
+        };
+        // Version, then the section sizes and counts (a short block is the reader's error to give).
+        let counter = |i: usize| {
+            data.get(8 * i..8 * i + 8)
+                .map(|b| u64::from_le_bytes(b.try_into().expect("eight bytes")))
+        };
+        for i in 1..10 {
+            let Some(declared) = counter(i) else { break };
+            // Counters 2 to 5 are compressed sizes, which the block itself must hold.
+            let bound = if (2..=5).contains(&i) { data.len() as u64 } else { bound };
+            if declared > bound {
+                return Err(EnvMapError::DwaCounter { declared, bound });
+            }
+        }
+    }
+    Ok(())
 }
 
 fn read_hdr(bytes: &[u8]) -> Result<(usize, usize, Vec<Vec3>), EnvMapError> {
@@ -294,6 +372,65 @@ mod tests {
             e.contains("tiles of 64 x 27262976 pixels in an image of 8 x 4"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn bands_of_lines_far_longer_than_their_image_are_refused_from_the_header() {
+        // A fuzzer's 682-byte file: DWAB's bands of 256 lines in an image of 16 million x 4
+        // pixels (within the pixel cap), for which the reader reserved 1.7 GB a band.
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("fuzz/regressions/envmap_load/exr-dwab-256-line-bands-in-4-line-image.exr");
+        let bytes = std::fs::read(&path).unwrap();
+        let e = EnvMap::from_bytes(&path, &bytes).unwrap_err().to_string();
+        assert!(
+            e.contains("bands of 256 lines in an image of 16383994 x 4"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn a_dwa_block_whose_counters_outgrow_its_band_is_refused_before_the_read() {
+        use exr::prelude::*;
+        // A real DWAB file (one band of 16 x 16 pixels), then its block's "unknown" section
+        // claims a terabyte: the reader would reserve that to inflate into.
+        let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| (x as f32, y as f32, 0.5));
+        let encoding = Encoding {
+            compression: Compression::DWAB(None),
+            blocks: Blocks::ScanLines,
+            line_order: LineOrder::Increasing,
+        };
+        let mut file = Cursor::new(Vec::new());
+        Image::from_encoded_channels((16, 16), encoding, channels)
+            .write()
+            .non_parallel()
+            .to_buffered(&mut file)
+            .unwrap();
+        let mut bytes = file.into_inner();
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("dwab.exr");
+        assert!(EnvMap::from_bytes(&p, &bytes).is_ok());
+        // The offset table (one entry) is the 8 bytes before the first block, which opens with its
+        // line (4 bytes), its size (4) and the DWA counters (version, then the unknown section's).
+        let table = (0..bytes.len() - 8)
+            .find(|&i| u64::from_le_bytes(bytes[i..i + 8].try_into().unwrap()) == i as u64 + 8)
+            .expect("the offset table points just past itself");
+        let counter = table + 8 + 8 + 8;
+        bytes[counter..counter + 8].copy_from_slice(&(1u64 << 40).to_le_bytes());
+        let e = EnvMap::from_bytes(&p, &bytes).unwrap_err().to_string();
+        assert!(e.contains("a DWA block declares 1099511627776 bytes"), "{e}");
+    }
+
+    #[test]
+    fn an_exr_cut_inside_its_offset_tables_is_refused_before_the_read() {
+        // glint writes EXRs in tiles of 64 x 64, so an 8192 x 256 image has 512 chunks and 4 KiB of
+        // offset table: cut to 2000 bytes it declares chunks its bytes cannot index.
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("wide.exr");
+        crate::film::write(&crate::film::Image::new(8192, 256), &p, 0.0).unwrap();
+        let bytes = std::fs::read(&p).unwrap();
+        let e = EnvMap::from_bytes(&p, &bytes[..2000]).unwrap_err().to_string();
+        assert!(e.contains("chunks, more than the 2000 bytes"), "{e}");
+        assert!(EnvMap::from_bytes(&p, &bytes).is_ok());
     }
 
     #[test]
