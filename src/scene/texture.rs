@@ -80,11 +80,11 @@ impl Texture {
         let (x0, y0) = (x0 as i64, y0 as i64);
         let xs = [
             self.wrap_s.index(x0, self.width),
-            self.wrap_s.index(x0 + 1, self.width),
+            self.wrap_s.index(x0.saturating_add(1), self.width),
         ];
         let ys = [
             self.wrap_t.index(y0, self.height),
-            self.wrap_t.index(y0 + 1, self.height),
+            self.wrap_t.index(y0.saturating_add(1), self.height),
         ];
         let top = self.texel(xs[0], ys[0]).lerp(self.texel(xs[1], ys[0]), fx);
         let bottom = self.texel(xs[0], ys[1]).lerp(self.texel(xs[1], ys[1]), fx);
@@ -126,5 +126,16 @@ mod tests {
         assert_eq!(Wrap::MirroredRepeat.index(-1, 4), 0);
         assert_eq!(Wrap::MirroredRepeat.index(4, 4), 3);
         assert_eq!(Wrap::Repeat.index(-1, 4), 3);
+    }
+
+    #[test]
+    fn coordinates_beyond_i64_clamp_to_an_edge_texel_in_every_wrap_mode() {
+        // A fuzzed UV of 1e30 floors to i64::MAX, whose right neighbour overflowed.
+        for wrap in [Wrap::Repeat, Wrap::ClampToEdge, Wrap::MirroredRepeat] {
+            for u in [1e30, -1e30] {
+                let v = checker(wrap).sample(Vec2::new(u, 0.5)).x;
+                assert!(v == 0.0 || v == 1.0, "{wrap:?} at {u}: {v}");
+            }
+        }
     }
 }
