@@ -47,3 +47,24 @@ fn every_fuzz_target_has_a_regression_folder_name_of_its_own() {
         );
     }
 }
+
+#[test]
+fn draco_streams_declaring_more_texcoord_orientations_than_corners_are_refused() {
+    // Two fuzzed streams whose portable texture-coordinate predictor declared up to 2^31
+    // orientations: Draco allocated 296 MB and decoded bits for 6-10 s before failing. Now the
+    // count is checked against the mesh's corners first (the replay above would pass either way,
+    // only slowly; here the stream must be refused).
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/regressions/draco_decode");
+    for name in [
+        "texcoord-orientations-2e31-48k.bin",
+        "texcoord-orientations-296mb-30k.bin",
+    ] {
+        let data = std::fs::read(dir.join(name)).unwrap();
+        let file = harness::draco_glb(&data).unwrap();
+        let e = glint::scene::gltf::load_bytes(Path::new(name), &file, 0)
+            .err()
+            .unwrap_or_else(|| panic!("{name} loaded"))
+            .to_string();
+        assert!(e.contains("Draco"), "{name}: {e}");
+    }
+}

@@ -191,8 +191,16 @@ const DRACO_LAYOUTS: [&[(&str, u32, &str)]; 5] = [
 /// count (u16), the triangle count (u16) and the attribute layout its fallback accessors declare;
 /// the rest is the Draco stream, the BIN chunk of a one-primitive .glb.
 pub fn draco(data: &[u8]) {
+    if let Some(file) = draco_glb(data) {
+        glb(&file);
+    }
+}
+
+/// The .glb that `draco` loads: a point count (u16), a face count (u16), an attribute layout (u8),
+/// then the Draco stream; None when the input is shorter than its header.
+pub fn draco_glb(data: &[u8]) -> Option<Vec<u8>> {
     if data.len() < 5 {
-        return;
+        return None;
     }
     let points = u16::from_le_bytes([data[0], data[1]]);
     let faces = u16::from_le_bytes([data[2], data[3]]) as u32;
@@ -225,7 +233,7 @@ pub fn draco(data: &[u8]) {
         attributes = attributes.join(", "),
         ids = ids.join(", "),
     );
-    glb(&glb_bytes(json.as_bytes(), stream));
+    Some(glb_bytes(json.as_bytes(), stream))
 }
 
 /// A .glb of a JSON chunk and a BIN chunk (each padded to 4 bytes).

@@ -121,6 +121,13 @@ bool MeshPredictionSchemeTexCoordsPortableDecoder<
   if (!buffer->Decode(&num_orientations) || num_orientations < 0) {
     return false;
   }
+  // glint: one orientation per corner at most, as the non-portable decoder checks; a stream's
+  // count of 2^31 allocated 256 MB and decoded for seconds.
+  const auto *table = this->mesh_data().corner_table();
+  if (table == nullptr ||
+      static_cast<int64_t>(num_orientations) > table->num_corners()) {
+    return false;
+  }
   predictor_.ResizeOrientations(num_orientations);
   bool last_orientation = true;
   RAnsBitDecoder decoder;
