@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Runs the fuzz targets one after another, each for SECONDS of wall time (default 900), at the lowest
-# CPU priority and one process at a time, and appends per target its CPU time, executions, corpus
+# Runs the fuzz targets one after another, each for SECONDS of wall time (default 900), at priority $NICE
+# (default 19, the lowest) and one process at a time, and appends per target its CPU time, executions, corpus
 # size and crashes to fuzz/runs.tsv.  Findings land in fuzz/artifacts/<target>/.
 # Usage: scripts/fuzz-run.sh [SECONDS] [TARGET...]   (needs cargo-fuzz and the nightly toolchain;
 # NO_BUILD=1 skips the build)
@@ -23,7 +23,7 @@ for t in "${targets[@]}"; do
     log="artifacts/$t/run-$(date +%s).log"
     # Each target runs in its own artifacts folder, so that two runs of this script (on different
     # targets) never share libFuzzer's fuzz-0.log.
-    (cd "artifacts/$t" && /usr/bin/time -f "%U %S" -o time nice -n 19 \
+    (cd "artifacts/$t" && /usr/bin/time -f "%U %S" -o time nice -n "${NICE:-19}" \
         "$bin/$t" "$fz/corpus/$t" -artifact_prefix="$fz/artifacts/$t/" \
         -jobs=1 -workers=1 -rss_limit_mb=1024 -malloc_limit_mb=1024 -timeout=10 -max_len=65536 \
         -max_total_time="$secs" -print_final_stats=1 $dict >"$fz/$log" 2>&1)
