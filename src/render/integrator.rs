@@ -235,12 +235,21 @@ impl<'a> Integrator<'a> {
         if f == Vec3::ZERO {
             return None;
         }
-        let t_max = if ls.dist.is_finite() {
-            (ls.dist * (1.0 - SHADOW_SHORTEN)).max(0.0)
+        let o = origin_towards(si, ls.wi);
+        // Aimed from the offset origin at the light's point itself: along `wi` from the offset
+        // origin, a ray grazing the light's plane would meet it offset / |cos| early, past the
+        // relative shortening (the ceiling 1 cm above the Cornell box light saw none of it).
+        let (d, t_max) = if ls.dist.is_finite() {
+            let to = si.p + ls.wi * ls.dist - o;
+            let len = to.length();
+            if len <= 0.0 {
+                return None;
+            }
+            (to / len, len * (1.0 - SHADOW_SHORTEN))
         } else {
-            f32::INFINITY
+            (ls.wi, f32::INFINITY)
         };
-        let shadow = Ray::segment(origin_towards(si, ls.wi), ls.wi, t_max)
+        let shadow = Ray::segment(o, d, t_max)
             .with_seed(leave.seed)
             .with_time(leave.time);
         let tr = self.transmittance::<THIN>(shadow, rays);
