@@ -199,3 +199,64 @@ fn constant_environment_map_renders_like_a_constant_environment() {
     }
     assert!((seen[0] - seen[1]).abs().max_element() <= 0.01 * rho * l);
 }
+
+/// The form factor from a point of the y = 0 plane (facing +y) at the origin to the rectangle
+/// [0, x] x [0, z] at height h above it, signed by the corner's quadrant (corners add up).
+fn corner_form_factor(x: f64, z: f64, h: f64) -> f64 {
+    let (sx, sz) = ((x * x + h * h).sqrt(), (z * z + h * h).sqrt());
+    (x / sx * (z / sx).atan() + z / sz * (x / sz).atan()) / (2.0 * std::f64::consts::PI)
+}
+
+#[test]
+fn lambertian_plane_beside_an_emissive_quad_hovering_1_cm_above_it() {
+    // The Cornell box's ceiling beside its light: every light direction grazes, so a shadow ray
+    // leaving an origin offset along the normal met the light's plane early and was blocked.
+    let (rho, l, h) = (0.8f32, 5.0f32, 0.01f32);
+    let (x0, x1, z0, z1) = (-0.5f32, -0.03f32, -0.2f32, 0.2f32);
+    let mut scene = Arc::unwrap_or_clone(lambert_plane(rho, Vec::new()));
+    scene.meshes.push(Mesh {
+        name: "light".into(),
+        positions: vec![
+            Vec3::new(x0, h, z0),
+            Vec3::new(x1, h, z0),
+            Vec3::new(x1, h, z1),
+            Vec3::new(x0, h, z1),
+        ],
+        normals: vec![-Vec3::Y; 4],
+        indices: vec![[0, 1, 2], [0, 2, 3]],
+        material: 1,
+        ..Default::default()
+    });
+    // Black, so that it only emits (no light comes back from what it lights).
+    scene.materials.push(Material {
+        emissive: Vec3::splat(l),
+        base_color: Vec4::new(0.0, 0.0, 0.0, 1.0),
+        metallic: 0.0,
+        specular: 0.0,
+        ..Default::default()
+    });
+    scene.instances.push(Instance::new(1, Mat4::IDENTITY));
+    let scene = Arc::new(scene);
+    let f = |x: f32, z: f32| corner_form_factor(x as f64, z as f64, h as f64);
+    let ff = f(x1, z1) - f(x0, z1) - f(x1, z0) + f(x0, z0);
+    // Straight down and narrow: the irradiance changes fast with the distance to the light, so
+    // an oblique pixel's footprint would average it over millimetres.
+    let camera = Camera::look_at(Vec3::new(0.0, 5.0, 0.0), Vec3::ZERO, Vec3::Z, 1e-4);
+    let settings = RenderSettings {
+        width: 3,
+        height: 3,
+        spp: 2048,
+        max_depth: 2,
+        seed: 5,
+        ..Default::default()
+    };
+    let expected = rho * l * ff.abs() as f32;
+    for backend in Backend::all_available() {
+        let c = common::render_with(&scene, &camera, backend, &settings).get(1, 1);
+        assert!(
+            (c.x - expected).abs() <= 0.01 * expected,
+            "{backend}: radiance {}, expected {expected}",
+            c.x
+        );
+    }
+}

@@ -325,4 +325,48 @@ mod tests {
         assert!((sph - flat).abs() < 2e-3 * flat, "{sph} vs {flat}");
         assert!(spherical_triangle(a, a, c, Vec2::splat(0.5)).is_none());
     }
+
+    #[test]
+    fn spherical_triangle_integrates_like_area_sampling_from_a_grazing_point() {
+        // The Cornell box light (two triangles, 1.98 m up) from the ceiling 1 cm above its plane:
+        // slivers near the horizon and, above the light, a triangle of 5.5 sr. The irradiance on
+        // the ceiling by both samplers (each a 512^2 quadrature) agrees to 1e-3 (relative).
+        let tris = [
+            [
+                Vec3::new(-0.24, 1.98, 0.16),
+                Vec3::new(-0.24, 1.98, -0.22),
+                Vec3::new(0.23, 1.98, -0.22),
+            ],
+            [
+                Vec3::new(-0.24, 1.98, 0.16),
+                Vec3::new(0.23, 1.98, -0.22),
+                Vec3::new(0.23, 1.98, 0.16),
+            ],
+        ];
+        let cos = |w: Vec3| (-w.y).max(0.0) as f64;
+        let cells = grid(512).count() as f64;
+        for pz in [-0.23f32, -0.3, 0.0, 0.215] {
+            let p = Vec3::new(0.01, 1.99, pz);
+            for v in tris {
+                let [a, b, c] = v.map(|q| (q - p).normalize());
+                let omega = spherical_triangle_area(a, b, c) as f64;
+                let n = (v[1] - v[0]).cross(v[2] - v[0]);
+                let area = 0.5 * n.length() as f64;
+                let (mut sph, mut flat) = (0.0f64, 0.0f64);
+                for u in grid(512) {
+                    sph += cos(spherical_triangle(a, b, c, u).unwrap()) * omega;
+                    let (b1, b2) = uniform_triangle(u);
+                    let q = v[0] * (1.0 - b1 - b2) + v[1] * b1 + v[2] * b2 - p;
+                    let wq = q.normalize();
+                    let cos_l = n.normalize().dot(wq).abs() as f64;
+                    flat += cos(wq) * cos_l / q.length_squared() as f64 * area;
+                }
+                let (sph, flat) = (sph / cells, flat / cells);
+                assert!(
+                    (sph - flat).abs() < 1e-3 * flat,
+                    "z {pz}, {omega} sr: {sph} vs {flat}"
+                );
+            }
+        }
+    }
 }

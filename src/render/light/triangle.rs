@@ -1,6 +1,6 @@
 //! Emissive triangles, two-sided, one entry per world-space triangle of each static emissive
-//! instance: sampled uniformly by area; rays find them through the accelerators, so only their pdf
-//! is asked for when a BSDF-sampled ray hits one.
+//! instance: sampled uniformly in the solid angle they subtend where that is large, by area where it
+//! is tiny; rays find them through the accelerators, so only their pdf is asked for on BSDF hits.
 
 use std::f32::consts::PI;
 
@@ -10,7 +10,7 @@ use super::area::{area_pdf, area_sample};
 use super::LightSample;
 use crate::render::bsdf::luminance;
 use crate::render::surface::emission;
-use crate::sample::warp::uniform_triangle;
+use crate::sample::warp::{spherical_triangle, spherical_triangle_area, uniform_triangle};
 use crate::scene::{Material, Mesh, Scene};
 
 #[derive(Clone, Debug)]
@@ -41,7 +41,25 @@ impl Triangle {
 
     pub fn sample(&self, scene: &Scene, p: Vec3, u: Vec2, choice: f32) -> Option<LightSample> {
         let v = &self.v;
-        let (b1, b2) = uniform_triangle(u);
+        let (b1, b2) = match self.solid_angle(p) {
+            Some((omega, [a, b, c])) => {
+                let (b1, b2) = self.barycentrics_along(p, spherical_triangle(a, b, c, u)?)?;
+                let q = v[0] * (1.0 - b1 - b2) + v[1] * b1 + v[2] * b2;
+                let mesh = scene.mesh_of(self.inst);
+                let mat = &scene.materials[mesh.material as usize];
+                let li = emission(scene, mat, mesh.uv_at(self.prim, b1, b2));
+                let to = q - p;
+                let dist = to.length();
+                return (dist > 0.0).then(|| LightSample {
+                    wi: to / dist,
+                    dist,
+                    li,
+                    pdf: choice / omega,
+                    is_delta: false,
+                });
+            }
+            None => uniform_triangle(u),
+        };
         let q = v[0] * (1.0 - b1 - b2) + v[1] * b1 + v[2] * b2;
         let mut n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
         // Emissive triangles are two-sided.
@@ -56,6 +74,9 @@ impl Triangle {
 
     /// The solid-angle pdf, times `choice`, with which `sample` picks point `q` (normal `nq`) from `p`.
     pub fn pdf(&self, choice: f32, p: Vec3, q: Vec3, nq: Vec3) -> f32 {
+        if let Some((omega, _)) = self.solid_angle(p) {
+            return choice / omega;
+        }
         let to = q - p;
         let d2 = to.length_squared();
         let cos_l = nq.dot(to.normalize_or_zero()).abs();
@@ -63,6 +84,39 @@ impl Triangle {
             return 0.0;
         }
         area_pdf(choice, d2, cos_l, self.area)
+    }
+}
+
+/// The solid angles (sr) between which emissive triangles are sampled by solid angle (pbrt-v4's
+/// bounds): below, area sampling is as good and the spherical warp loses precision; above, the
+/// triangle nearly fills a hemisphere and the warp's corner angles do.
+const SPHERICAL_SOLID_ANGLES: std::ops::RangeInclusive<f32> = 3e-4..=6.22;
+
+impl Triangle {
+    /// The solid angle the triangle subtends from `p` and its unit corner directions, where it
+    /// is sampled by solid angle.
+    fn solid_angle(&self, p: Vec3) -> Option<(f32, [Vec3; 3])> {
+        let [a, b, c] = self.v.map(|v| (v - p).normalize_or_zero());
+        let omega = spherical_triangle_area(a, b, c);
+        SPHERICAL_SOLID_ANGLES
+            .contains(&omega)
+            .then_some((omega, [a, b, c]))
+    }
+
+    /// Barycentrics (of corners 1 and 2) where the ray from `p` along `w` meets the triangle's
+    /// plane (Moller-Trumbore), clamped into the triangle against rounding.
+    fn barycentrics_along(&self, p: Vec3, w: Vec3) -> Option<(f32, f32)> {
+        let [v0, v1, v2] = self.v;
+        let (e1, e2) = (v1 - v0, v2 - v0);
+        let s1 = w.cross(e2);
+        let div = s1.dot(e1);
+        if div == 0.0 || !div.is_finite() {
+            return None;
+        }
+        let s = p - v0;
+        let b1 = (s.dot(s1) / div).clamp(0.0, 1.0);
+        let b2 = (w.dot(s.cross(e1)) / div).clamp(0.0, 1.0 - b1);
+        Some((b1, b2))
     }
 }
 
