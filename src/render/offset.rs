@@ -19,10 +19,12 @@ pub fn offset_ray_origin(p: Vec3, n: Vec3) -> Vec3 {
     let mut out = [0.0f32; 3];
     for a in 0..3 {
         let bits = p[a].to_bits() as i32;
+        // Wrapping, as release builds do anyway: -0.0's bits are i32::MIN, and near zero the
+        // result is not used.
         let moved = f32::from_bits(if p[a] < 0.0 {
-            bits - of_i[a]
+            bits.wrapping_sub(of_i[a])
         } else {
-            bits + of_i[a]
+            bits.wrapping_add(of_i[a])
         } as u32);
         out[a] = if p[a].abs() < ORIGIN {
             p[a] + FLOAT_SCALE * n[a]
@@ -46,6 +48,17 @@ mod tests {
             assert!((q - p).dot(n) > 0.0, "scale {scale}");
             // Small relative to the coordinates (or to the absolute floor near zero).
             assert!((q - p).length() <= (p.abs().max_element() * 1e-4).max(1e-4));
+        }
+    }
+
+    #[test]
+    fn negative_zero_and_the_smallest_negatives_move_like_zero() {
+        // Their bits sit at i32::MIN, where the integer offset overflowed (a fuzzed GLB).
+        let n = Vec3::new(0.6, -0.8, 0.0);
+        for x in [-0.0f32, -f32::from_bits(1), 0.0] {
+            let p = Vec3::new(x, x, x);
+            let q = offset_ray_origin(p, n);
+            assert!((q - p).dot(n) > 0.0 && q.is_finite(), "{x}: {q}");
         }
     }
 }
