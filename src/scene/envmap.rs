@@ -162,7 +162,9 @@ enum EnvMapError {
     Chunks { chunks: usize, bytes: usize },
     #[error("bands of {lines} lines in an image of {} x {}", image.0, image.1)]
     Bands { lines: u64, image: (usize, usize) },
-    #[error("a DWA block declares {declared} bytes, more than its {bound}-byte tile or band can hold")]
+    #[error(
+        "a DWA block declares {declared} bytes, more than its {bound}-byte tile or band can hold"
+    )]
     DwaCounter { declared: u64, bound: u64 },
 }
 
@@ -260,7 +262,9 @@ fn check_dwa_blocks(bytes: &[u8], meta: &exr::meta::MetaData) -> Result<(), EnvM
     let bounds: Vec<u64> = (meta.headers.iter())
         .map(|h| {
             let (w, lines) = match h.blocks {
-                exr::meta::BlockDescription::Tiles(t) => (t.tile_size.width(), t.tile_size.height()),
+                exr::meta::BlockDescription::Tiles(t) => {
+                    (t.tile_size.width(), t.tile_size.height())
+                }
                 exr::meta::BlockDescription::ScanLines => {
                     (h.layer_size.width(), h.compression.scan_lines_per_block())
                 }
@@ -293,7 +297,11 @@ fn check_dwa_blocks(bytes: &[u8], meta: &exr::meta::MetaData) -> Result<(), EnvM
         for i in 1..10 {
             let Some(declared) = counter(i) else { break };
             // Counters 2 to 5 are compressed sizes, which the block itself must hold.
-            let bound = if (2..=5).contains(&i) { data.len() as u64 } else { bound };
+            let bound = if (2..=5).contains(&i) {
+                data.len() as u64
+            } else {
+                bound
+            };
             if declared > bound {
                 return Err(EnvMapError::DwaCounter { declared, bound });
             }
@@ -417,7 +425,10 @@ mod tests {
         let counter = table + 8 + 8 + 8;
         bytes[counter..counter + 8].copy_from_slice(&(1u64 << 40).to_le_bytes());
         let e = EnvMap::from_bytes(&p, &bytes).unwrap_err().to_string();
-        assert!(e.contains("a DWA block declares 1099511627776 bytes"), "{e}");
+        assert!(
+            e.contains("a DWA block declares 1099511627776 bytes"),
+            "{e}"
+        );
     }
 
     #[test]
@@ -428,7 +439,9 @@ mod tests {
         let p = dir.path().join("wide.exr");
         crate::film::write(&crate::film::Image::new(8192, 256), &p, 0.0).unwrap();
         let bytes = std::fs::read(&p).unwrap();
-        let e = EnvMap::from_bytes(&p, &bytes[..2000]).unwrap_err().to_string();
+        let e = EnvMap::from_bytes(&p, &bytes[..2000])
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("chunks, more than the 2000 bytes"), "{e}");
         assert!(EnvMap::from_bytes(&p, &bytes).is_ok());
     }
