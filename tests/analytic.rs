@@ -104,8 +104,8 @@ fn lambertian_plane_under_a_directional_light() {
 
 /// The converged radiance of the plane at the origin seen obliquely (Lambertian: any view will do,
 /// and this one passes beside the lights above the origin), through the whole integrator with MIS.
-fn area_lit_radiance(scene: &Arc<Scene>, backend: Backend) -> Vec3 {
-    let camera = Camera::look_at(Vec3::new(4.0, 1.0, 0.0), Vec3::ZERO, Vec3::Y, 1e-3);
+/// The radiance at the centre pixel of a tiny, narrow image of `scene` seen by `camera`.
+fn area_lit_radiance(scene: &Arc<Scene>, camera: &Camera, backend: Backend) -> Vec3 {
     let settings = RenderSettings {
         width: 3,
         height: 3,
@@ -114,14 +114,23 @@ fn area_lit_radiance(scene: &Arc<Scene>, backend: Backend) -> Vec3 {
         seed: 5,
         ..Default::default()
     };
-    common::render_with(scene, &camera, backend, &settings)
+    common::render_with(scene, camera, backend, &settings)
         .get(1, 1)
         .truncate()
 }
 
+/// Checks, on every backend, that the plane seen obliquely has grey radiance `expected` (1%).
 fn assert_radiance(scene: &Arc<Scene>, expected: f32, what: &str) {
+    assert_radiance_from(scene, &oblique_camera(), expected, what);
+}
+
+fn oblique_camera() -> Camera {
+    Camera::look_at(Vec3::new(4.0, 1.0, 0.0), Vec3::ZERO, Vec3::Y, 1e-3)
+}
+
+fn assert_radiance_from(scene: &Arc<Scene>, camera: &Camera, expected: f32, what: &str) {
     for backend in Backend::all_available() {
-        let l = area_lit_radiance(scene, backend);
+        let l = area_lit_radiance(scene, camera, backend);
         for c in l.to_array() {
             assert!(
                 (c - expected).abs() <= 0.01 * expected,
@@ -195,7 +204,11 @@ fn constant_environment_map_renders_like_a_constant_environment() {
             }],
         );
         assert_radiance(&scene, rho * l, "environment");
-        seen.push(area_lit_radiance(&scene, Backend::default_available()));
+        seen.push(area_lit_radiance(
+            &scene,
+            &oblique_camera(),
+            Backend::default_available(),
+        ));
     }
     assert!((seen[0] - seen[1]).abs().max_element() <= 0.01 * rho * l);
 }
@@ -242,21 +255,6 @@ fn lambertian_plane_beside_an_emissive_quad_hovering_1_cm_above_it() {
     // Straight down and narrow: the irradiance changes fast with the distance to the light, so
     // an oblique pixel's footprint would average it over millimetres.
     let camera = Camera::look_at(Vec3::new(0.0, 5.0, 0.0), Vec3::ZERO, Vec3::Z, 1e-4);
-    let settings = RenderSettings {
-        width: 3,
-        height: 3,
-        spp: 2048,
-        max_depth: 2,
-        seed: 5,
-        ..Default::default()
-    };
     let expected = rho * l * ff.abs() as f32;
-    for backend in Backend::all_available() {
-        let c = common::render_with(&scene, &camera, backend, &settings).get(1, 1);
-        assert!(
-            (c.x - expected).abs() <= 0.01 * expected,
-            "{backend}: radiance {}, expected {expected}",
-            c.x
-        );
-    }
+    assert_radiance_from(&scene, &camera, expected, "beside a hovering quad");
 }

@@ -41,34 +41,31 @@ impl Triangle {
 
     pub fn sample(&self, scene: &Scene, p: Vec3, u: Vec2, choice: f32) -> Option<LightSample> {
         let v = &self.v;
-        let (b1, b2) = match self.solid_angle(p) {
-            Some((omega, [a, b, c])) => {
-                let (b1, b2) = self.barycentrics_along(p, spherical_triangle(a, b, c, u)?)?;
-                let q = v[0] * (1.0 - b1 - b2) + v[1] * b1 + v[2] * b2;
-                let mesh = scene.mesh_of(self.inst);
-                let mat = &scene.materials[mesh.material as usize];
-                let li = emission(scene, mat, mesh.uv_at(self.prim, b1, b2));
-                let to = q - p;
-                let dist = to.length();
-                return (dist > 0.0).then(|| LightSample {
-                    wi: to / dist,
-                    dist,
-                    li,
-                    pdf: choice / omega,
-                    is_delta: false,
-                });
-            }
+        let spherical = self.solid_angle(p);
+        let (b1, b2) = match spherical {
+            Some((_, [a, b, c])) => self.barycentrics_along(p, spherical_triangle(a, b, c, u)?)?,
             None => uniform_triangle(u),
         };
         let q = v[0] * (1.0 - b1 - b2) + v[1] * b1 + v[2] * b2;
+        let mesh = scene.mesh_of(self.inst);
+        let mat = &scene.materials[mesh.material as usize];
+        let li = emission(scene, mat, mesh.uv_at(self.prim, b1, b2));
+        if let Some((omega, _)) = spherical {
+            let to = q - p;
+            let dist = to.length();
+            return (dist > 0.0).then(|| LightSample {
+                wi: to / dist,
+                dist,
+                li,
+                pdf: choice / omega,
+                is_delta: false,
+            });
+        }
         let mut n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
         // Emissive triangles are two-sided.
         if n.dot(q - p) > 0.0 {
             n = -n;
         }
-        let mesh = scene.mesh_of(self.inst);
-        let mat = &scene.materials[mesh.material as usize];
-        let li = emission(scene, mat, mesh.uv_at(self.prim, b1, b2));
         area_sample(p, q, n, self.area, li, choice)
     }
 
