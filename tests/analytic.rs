@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use glam::{Mat4, Vec3, Vec4};
 use glint::accel::Backend;
-use glint::render::RenderSettings;
+use glint::render::{LightSampler, RenderSettings};
 use glint::scene::{
     Camera, DiskLight, EnvMap, Instance, Light, Material, Mesh, RectLight, Scene, SphereLight,
 };
@@ -102,16 +102,21 @@ fn lambertian_plane_under_a_directional_light() {
     }
 }
 
-/// The converged radiance of the plane at the origin seen obliquely (Lambertian: any view will do,
-/// and this one passes beside the lights above the origin), through the whole integrator with MIS.
-/// The radiance at the centre pixel of a tiny, narrow image of `scene` seen by `camera`.
-fn area_lit_radiance(scene: &Arc<Scene>, camera: &Camera, backend: Backend) -> Vec3 {
+/// The converged radiance at the centre pixel of a tiny, narrow image of `scene` seen by `camera`,
+/// through the whole integrator with MIS, lights chosen by `light_sampler`.
+fn area_lit_radiance(
+    scene: &Arc<Scene>,
+    camera: &Camera,
+    backend: Backend,
+    light_sampler: LightSampler,
+) -> Vec3 {
     let settings = RenderSettings {
         width: 3,
         height: 3,
         spp: 2048,
         max_depth: 2,
         seed: 5,
+        light_sampler,
         ..Default::default()
     };
     common::render_with(scene, camera, backend, &settings)
@@ -119,22 +124,35 @@ fn area_lit_radiance(scene: &Arc<Scene>, camera: &Camera, backend: Backend) -> V
         .truncate()
 }
 
-/// Checks, on every backend, that the plane seen obliquely has grey radiance `expected` (1%).
+/// Checks, on every backend, that the plane at the origin seen obliquely (Lambertian: any view will
+/// do, and this one passes beside the lights above the origin) has grey radiance `expected` (1%).
 fn assert_radiance(scene: &Arc<Scene>, expected: f32, what: &str) {
-    assert_radiance_from(scene, &oblique_camera(), expected, what);
+    assert_radiance_from(
+        scene,
+        &oblique_camera(),
+        LightSampler::Power,
+        expected,
+        what,
+    );
 }
 
 fn oblique_camera() -> Camera {
     Camera::look_at(Vec3::new(4.0, 1.0, 0.0), Vec3::ZERO, Vec3::Y, 1e-3)
 }
 
-fn assert_radiance_from(scene: &Arc<Scene>, camera: &Camera, expected: f32, what: &str) {
+fn assert_radiance_from(
+    scene: &Arc<Scene>,
+    camera: &Camera,
+    light_sampler: LightSampler,
+    expected: f32,
+    what: &str,
+) {
     for backend in Backend::all_available() {
-        let l = area_lit_radiance(scene, camera, backend);
+        let l = area_lit_radiance(scene, camera, backend, light_sampler);
         for c in l.to_array() {
             assert!(
                 (c - expected).abs() <= 0.01 * expected,
-                "{what} ({backend}): radiance {c}, expected {expected}"
+                "{what} ({backend}, lights by {light_sampler}): radiance {c}, expected {expected}"
             );
         }
     }
@@ -208,6 +226,7 @@ fn constant_environment_map_renders_like_a_constant_environment() {
             &scene,
             &oblique_camera(),
             Backend::default_available(),
+            LightSampler::Power,
         ));
     }
     assert!((seen[0] - seen[1]).abs().max_element() <= 0.01 * rho * l);
@@ -226,21 +245,55 @@ fn lambertian_plane_beside_an_emissive_quad_hovering_1_cm_above_it() {
     // leaving an origin offset along the normal met the light's plane early and was blocked.
     let (rho, l, h) = (0.8f32, 5.0f32, 0.01f32);
     let (x0, x1, z0, z1) = (-0.5f32, -0.03f32, -0.2f32, 0.2f32);
-    let mut scene = Arc::unwrap_or_clone(lambert_plane(rho, Vec::new()));
+    let scene = with_emissive_quad(lambert_plane(rho, Vec::new()), [x0, x1, z0, z1], h, l, 1);
+    let f = |x: f32, z: f32| corner_form_factor(x as f64, z as f64, h as f64);
+    let ff = f(x1, z1) - f(x0, z1) - f(x1, z0) + f(x0, z0);
+    // Straight down and narrow: the irradiance changes fast with the distance to the light, so
+    // an oblique pixel's footprint would average it over millimetres.
+    let camera = Camera::look_at(Vec3::new(0.0, 5.0, 0.0), Vec3::ZERO, Vec3::Z, 1e-4);
+    let expected = rho * l * ff.abs() as f32;
+    assert_radiance_from(
+        &scene,
+        &camera,
+        LightSampler::Power,
+        expected,
+        "beside a hovering quad",
+    );
+}
+
+/// `scene` with a black rectangle [x0, x1] x [z0, z1] at height `h` that emits `l` (and so only
+/// emits: nothing comes back from what it lights), cut into n x n squares of two triangles each.
+fn with_emissive_quad(
+    scene: Arc<Scene>,
+    [x0, x1, z0, z1]: [f32; 4],
+    h: f32,
+    l: f32,
+    n: u32,
+) -> Arc<Scene> {
+    let mut scene = Arc::unwrap_or_clone(scene);
+    let mut positions = Vec::new();
+    let mut indices = Vec::new();
+    let lerp = |a: f32, b: f32, t: u32| a + (b - a) * t as f32 / n as f32;
+    for i in 0..=n {
+        for j in 0..=n {
+            positions.push(Vec3::new(lerp(x0, x1, i), h, lerp(z0, z1, j)));
+        }
+    }
+    let at = |i: u32, j: u32| i * (n + 1) + j;
+    for i in 0..n {
+        for j in 0..n {
+            indices.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+            indices.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+        }
+    }
     scene.meshes.push(Mesh {
         name: "light".into(),
-        positions: vec![
-            Vec3::new(x0, h, z0),
-            Vec3::new(x1, h, z0),
-            Vec3::new(x1, h, z1),
-            Vec3::new(x0, h, z1),
-        ],
-        normals: vec![-Vec3::Y; 4],
-        indices: vec![[0, 1, 2], [0, 2, 3]],
-        material: 1,
+        normals: vec![-Vec3::Y; positions.len()],
+        positions,
+        indices,
+        material: scene.materials.len() as u32,
         ..Default::default()
     });
-    // Black, so that it only emits (no light comes back from what it lights).
     scene.materials.push(Material {
         emissive: Vec3::splat(l),
         base_color: Vec4::new(0.0, 0.0, 0.0, 1.0),
@@ -248,13 +301,29 @@ fn lambertian_plane_beside_an_emissive_quad_hovering_1_cm_above_it() {
         specular: 0.0,
         ..Default::default()
     });
-    scene.instances.push(Instance::new(1, Mat4::IDENTITY));
-    let scene = Arc::new(scene);
-    let f = |x: f32, z: f32| corner_form_factor(x as f64, z as f64, h as f64);
+    scene
+        .instances
+        .push(Instance::new(scene.meshes.len() as u32 - 1, Mat4::IDENTITY));
+    Arc::new(scene)
+}
+
+#[test]
+fn lambertian_plane_under_an_emissive_quad_of_512_triangles_by_power_and_by_bvh() {
+    // Many emitters of one closed form: the light BVH must choose among them without bias.
+    let (rho, l, h) = (0.6f32, 3.0f32, 0.7f32);
+    let rect = [-0.9f32, 0.4, -0.3, 0.8];
+    let scene = with_emissive_quad(lambert_plane(rho, Vec::new()), rect, h, l, 16);
+    let [x0, x1, z0, z1] = rect.map(|v| v as f64);
+    let f = |x: f64, z: f64| corner_form_factor(x, z, h as f64);
     let ff = f(x1, z1) - f(x0, z1) - f(x1, z0) + f(x0, z0);
-    // Straight down and narrow: the irradiance changes fast with the distance to the light, so
-    // an oblique pixel's footprint would average it over millimetres.
-    let camera = Camera::look_at(Vec3::new(0.0, 5.0, 0.0), Vec3::ZERO, Vec3::Z, 1e-4);
-    let expected = rho * l * ff.abs() as f32;
-    assert_radiance_from(&scene, &camera, expected, "beside a hovering quad");
+    for sampler in [LightSampler::Power, LightSampler::Bvh] {
+        let what = "under a tessellated quad";
+        assert_radiance_from(
+            &scene,
+            &oblique_camera(),
+            sampler,
+            rho * l * ff as f32,
+            what,
+        );
+    }
 }

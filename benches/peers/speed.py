@@ -8,14 +8,24 @@ camera, size, depth and thread count. A bench, not a test.
 This Python needs numpy, OpenEXR and mitsuba (`pip install mitsuba`; the llvm variant needs libLLVM:
 `apt-get install libllvm19`, found through DRJIT_LIBLLVM_PATH, default /usr/lib/x86_64-linux-gnu/libLLVM-19.so).
 
-Scene `bunny-cornell` (../shared/assets/obj): the Cornell box (Lambertian walls and boxes, its
-emissive ceiling quad as the only light) with the Stanford bunny as a rough metal (GGX, Schlick
-Fresnel from a base colour of 0.9, roughness 0.3). The script writes the geometry once as OBJ files
+    speed.py OUTDIR --scene many-emitters --renderers glint:power,glint:bvh,mitsuba,cycles
+
+Scenes (`--scene`, ../shared/assets/obj):
+- `bunny-cornell`: the Cornell box (Lambertian walls and boxes, its emissive ceiling quad as the
+  only light) with the Stanford bunny as a rough metal (GGX, Schlick Fresnel from a base colour of
+  0.9, roughness 0.3).
+- `many-emitters`: the same room and bunny without the ceiling quad, lit by 1,200 small emissive
+  triangles (4 colours and strengths, 300 each) strewn through its upper half: where a light
+  sampler's choice among lights decides the noise.
+
+`glint:SAMPLER` runs glint with `--light-sampler SAMPLER` (power, bvh; plain `glint`: its default).
+The script writes the geometry once as OBJ files
 with explicit normals (the box flat, the bunny smooth), so every renderer reads the same triangles
 and normals, and gives each renderer the same materials:
 - glint: a scene file (Lambert: specular 0, roughness 1; metal: metallic 1); emitters two-sided.
 - Mitsuba: twosided diffuse, principled (metallic 1, same roughness), area emitters; Mitsuba's are
-  one-sided, so the light is a back-to-back pair (the upward copy 1e-4 above) as glint's is two-sided.
+  one-sided, so each emitter is a back-to-back pair (the reversed copy 1e-4 behind) as glint's are
+  two-sided.
 - Cycles: Diffuse BSDF; Principled metallic with single-scatter GGX; Emission added to the light's
   diffuse (Cycles emission is two-sided).
 Depth: glint --max-depth D = Mitsuba max_depth D + 1 (path segments, 1 = emitters seen directly) =
@@ -90,6 +100,36 @@ def write_obj(path, p, tris, normals):
         f.writelines(f"f {a}//{a} {b}//{b} {c}//{c}\n" for a, b, c in tris + 1)
 
 
+def emitter(out, name, p, tris, n, colour, radiance):
+    """An emitter part, with the back-to-back twin (reversed, 1e-4 behind) one-sided renderers need."""
+    write_obj(out / f"{name}.obj", p, tris, n)
+    behind = p[tris.reshape(-1)] - 1e-4 * np.repeat(n, 3, axis=0)
+    back = np.arange(len(behind)).reshape(-1, 3)
+    write_obj(out / f"{name}_back.obj", behind, back[:, ::-1], -n)
+    return (name, out / f"{name}.obj", {"kind": "emitter", "colour": colour, "radiance": radiance,
+                                         "twin": str(out / f"{name}_back.obj")})
+
+
+def many_emitters(out):
+    """bunny_cornell without its ceiling light, lit by small triangles strewn through the room's upper half."""
+    parts = [part for part in bunny_cornell(out) if part[2]["kind"] != "emitter"]
+    rng = np.random.default_rng(7)
+    groups = [("warm", [9.0, 6.0, 2.5]), ("cool", [1.5, 3.0, 7.0]), ("red", [14.0, 2.0, 1.5]), ("green", [2.0, 5.0, 2.0])]
+    for name, radiance in groups:
+        n = 300
+        centre = rng.uniform([-0.95, 1.15, -0.95], [0.95, 1.9, 0.95], size=(n, 3))
+        # Two random edges of about 4 cm from each centre.
+        e1 = rng.normal(size=(n, 3))
+        e1 *= 0.04 / np.linalg.norm(e1, axis=1, keepdims=True)
+        e2 = np.cross(e1, rng.normal(size=(n, 3)))
+        e2 *= 0.04 / np.linalg.norm(e2, axis=1, keepdims=True)
+        p = np.stack([centre - (e1 + e2) / 3, centre + (2 * e1 - e2) / 3, centre + (2 * e2 - e1) / 3], axis=1)
+        p = p.reshape(-1, 3)
+        tris = np.arange(len(p)).reshape(-1, 3)
+        parts.append(emitter(out, f"lights_{name}", p, tris, face_normals(p, tris), [0.0] * 3, radiance))
+    return parts
+
+
 def bunny_cornell(out):
     """The parts as (name, obj file, material) with material {kind, colour[, roughness, radiance]}."""
     box = OBJ / "CornellBox-Original" / "CornellBox-Original.obj"
@@ -103,10 +143,7 @@ def bunny_cornell(out):
             # Face down, into the room; the upward twin is for renderers with one-sided emitters.
             if n[:, 1].mean() > 0:
                 tris, n = tris[:, ::-1], -n
-            write_obj(out / "light.obj", p, tris, n)
-            q = p + np.array([0, 1e-4, 0])
-            write_obj(out / "light_up.obj", q, tris[:, ::-1], -n)
-            parts.append(("light", out / "light.obj", {"kind": "emitter", "colour": m["Kd"], "radiance": m["Ke"]}))
+            parts.append(emitter(out, "light", p, tris, n, m["Kd"], m["Ke"]))
         else:
             write_obj(out / f"{name}.obj", p, tris, n)
             parts.append((name, out / f"{name}.obj", {"kind": "diffuse", "colour": m.get("Kd", [0.8] * 3)}))
@@ -127,6 +164,9 @@ def bunny_cornell(out):
     return parts
 
 
+SCENES = {"bunny-cornell": bunny_cornell, "many-emitters": many_emitters}
+
+
 def read_exr(path):
     import OpenEXR  # not in Blender's Python, which runs only cycles_job
     with OpenEXR.File(str(path)) as f:
@@ -141,7 +181,7 @@ def write_exr(path, rgb):
         f.write(str(path))
 
 
-def glint(a, parts, out, seed):
+def glint(a, parts, out, seed, light_sampler=None):
     toml = out / "scene.toml"
     lines = [f"[camera]\nposition = {list(EYE)}\nlook_at = {list(LOOK_AT)}\nfov = {FOV}\n"]
     for name, path, m in parts:
@@ -154,10 +194,12 @@ def glint(a, parts, out, seed):
             lines.append(f"emissive = {m['radiance']}")
         lines.append(f'\n[[asset]]\npath = "{path.name}"\nmaterial = "{name}"\n')
     toml.write_text("\n".join(lines))
-    exr = out / f"glint_{seed}.exr"
+    exr = out / f"glint{'_' + light_sampler if light_sampler else ''}_{seed}.exr"
     cmd = [a.glint, "render", str(toml), "-o", str(exr), "--width", str(a.width), "--height", str(a.height),
            "--spp", str(a.spp), "--max-depth", str(a.depth), "--seed", str(seed), "--filter", "box",
            "--threads", str(a.threads), "--default-lights", "off", "--backend", "embree"]
+    if light_sampler:
+        cmd += ["--light-sampler", light_sampler]
     r = subprocess.run(cmd, capture_output=True, text=True)
     m = re.search(r"spp with \S+ in ([0-9.]+) s", r.stderr)
     if r.returncode != 0 or not m:
@@ -188,8 +230,8 @@ def mitsuba(a, parts, out, seed, _cache={}):
             if m["kind"] == "emitter":
                 emitter = {"type": "area", "radiance": {"type": "rgb", "value": m["radiance"]}}
                 scene[name]["emitter"] = emitter
-                scene[name + "_up"] = {"type": "obj", "filename": str(path.with_name("light_up.obj")),
-                                       "bsdf": bsdf, "emitter": dict(emitter)}
+                scene[name + "_back"] = {"type": "obj", "filename": m["twin"], "face_normals": False,
+                                         "bsdf": bsdf, "emitter": dict(emitter)}
         _cache["scene"] = mi.load_dict(scene)
         np.array(mi.render(_cache["scene"], spp=1, seed=999))  # compiles the kernels
     t0 = time.time()
@@ -271,15 +313,18 @@ def main():
     ap.add_argument("--depth", type=int, default=5)
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--renderers", default="glint,mitsuba,cycles")
+    ap.add_argument("--scene", choices=sorted(SCENES), default="bunny-cornell")
     a = ap.parse_args()
     os.environ.setdefault("DRJIT_LIBLLVM_PATH", "/usr/lib/x86_64-linux-gnu/libLLVM-19.so")
     out = Path(a.out).resolve()
     out.mkdir(parents=True, exist_ok=True)
-    parts = bunny_cornell(out)
+    parts = SCENES[a.scene](out)
     renderers = {"glint": glint, "mitsuba": mitsuba, "cycles": cycles}
     rows = []
     for name in a.renderers.split(","):
-        (i1, t1), (i2, t2) = (renderers[name](a, parts, out, s) for s in (1, 2))
+        base, _, option = name.partition(":")
+        run = (lambda a, parts, out, s: glint(a, parts, out, s, option)) if option else renderers[base]
+        (i1, t1), (i2, t2) = (run(a, parts, out, s) for s in (1, 2))
         write_exr(out / f"{name}_mean.exr", (i1 + i2) / 2)
         sigma = float(np.sqrt(np.mean((i1 - i2) ** 2)) * math.sqrt(a.spp / 2))
         ms = 1e3 * (t1 + t2) / (2 * a.spp)
@@ -287,7 +332,7 @@ def main():
                      "s_to_rmse_0.01": ms / 1e3 * (sigma / 0.01) ** 2, "mean": float(((i1 + i2) / 2).mean())})
         print(json.dumps(rows[-1]), flush=True)
     ref = rows[0]
-    lines = [f"bunny-cornell, {a.width}x{a.height}, {a.spp} spp x 2 seeds, glint depth {a.depth}, {a.threads} threads, "
+    lines = [f"{a.scene}, {a.width}x{a.height}, {a.spp} spp x 2 seeds, glint depth {a.depth}, {a.threads} threads, "
              f"load average {os.getloadavg()[0]:.1f}", "",
              f"| renderer | sigma | ms/spp | s to RMSE 0.01 | mean / {ref['renderer']}'s | time ratio to {ref['renderer']} |",
              "|---|---|---|---|---|---|"]

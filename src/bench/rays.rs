@@ -15,7 +15,7 @@ use crate::accel::{self, compare, Accel, Backend};
 use crate::geometry::mix64;
 use crate::geometry::Frame;
 use crate::geometry::Ray;
-use crate::render::light::LightSet;
+use crate::render::light::{LightContext, LightSampler, LightSet};
 use crate::render::offset::offset_ray_origin;
 use crate::render::RayCamera;
 use crate::sample::warp::cosine_hemisphere;
@@ -111,7 +111,8 @@ pub fn generate_rays(scene: &Scene, accel: &dyn Accel, width: usize, height: usi
     let camera = defaults::default_camera(scene, width as f32 / height as f32);
     let mut lit = scene.clone();
     defaults::light_if_unlit(&mut lit, &camera.to_world);
-    let lights = LightSet::new(&lit);
+    // By power, so the shadow rays stay those earlier runs traced.
+    let lights = LightSet::with_sampler(&lit, LightSampler::Power);
     let cam = RayCamera::new(&camera, width, height);
     // Times spread over the shutter when something moves (0 otherwise, as renders do).
     let timed = scene.has_motion();
@@ -144,7 +145,7 @@ pub fn generate_rays(scene: &Scene, accel: &dyn Accel, width: usize, height: usi
             let o = offset_ray_origin(p, n);
             let u = |k: u64| unit(mix64(i as u64 * 4 + k));
             let shadow = lights
-                .sample(&lit, p, u(0), Vec2::new(u(1), u(2)))
+                .sample(&lit, &LightContext { p, n }, u(0), Vec2::new(u(1), u(2)))
                 .map(|ls| Ray::segment(o, ls.wi, ls.dist * (1.0 - 1e-3)).with_time(r.time));
             let d = Frame::from_normal(n).to_world(cosine_hemisphere(Vec2::new(u(3), u(1))));
             Some((shadow, Ray::new(o, d).with_time(r.time)))

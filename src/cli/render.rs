@@ -15,7 +15,7 @@ use crate::film::{self, Display, Format, Image, ViewTransform};
 use crate::render::job::{
     Basics, CameraChoice, CameraRef, Environment, JobOptions, Overrides, RenderJob, Setup, View,
 };
-use crate::render::{AdaptiveMode, RenderOutput, RenderSettings};
+use crate::render::{AdaptiveMode, LightSampler, RenderOutput, RenderSettings};
 use crate::sample::SamplerKind;
 
 #[derive(clap::Args, Debug)]
@@ -61,6 +61,10 @@ pub struct RenderArgs {
     /// Sample generator (Owen-scrambled Sobol by default) [default: sobol]
     #[arg(long, value_enum)]
     pub sampler: Option<SamplerKind>,
+    /// How light samples choose among the lights: by power, or through the light BVH (by a bound
+    /// on what each light sends the shading point; less noise among many lights, more time).
+    #[arg(long, value_enum, default_value_t = LightSampler::Power)]
+    pub light_sampler: LightSampler,
     /// Pixel reconstruction filter [default: gaussian]
     #[arg(long, value_enum)]
     pub filter: Option<FilterKind>,
@@ -128,6 +132,7 @@ impl RenderArgs {
                 min_spp: self.min_spp,
                 max_spp: self.max_spp,
                 time_budget: self.time_budget,
+                light_sampler: self.light_sampler,
                 ..RenderSettings::default()
             },
             view: View {

@@ -4,7 +4,7 @@
 use glam::{Vec3, Vec4};
 
 use super::features::PathFeatures;
-use super::light::LightSet;
+use super::light::{LightContext, LightSampler, LightSet};
 use super::offset::offset_ray_origin;
 use super::surface::SurfaceInteraction;
 use crate::accel::Accel;
@@ -40,17 +40,19 @@ pub struct PathResult {
 }
 
 impl<'a> Integrator<'a> {
-    /// The integrator for `scene`, with the shadow-ray path its `features` need.
+    /// The integrator for `scene`, with the shadow-ray path its `features` need and lights chosen
+    /// by `light_sampler`.
     pub fn new(
         scene: &'a Scene,
         accel: &'a dyn Accel,
         max_depth: u32,
         features: &Features,
+        light_sampler: LightSampler,
     ) -> Self {
         Self {
             scene,
             accel,
-            lights: LightSet::new(scene),
+            lights: LightSet::with_sampler(scene, light_sampler),
             max_depth,
             thin_shadows: features.thin_walls,
         }
@@ -138,15 +140,14 @@ impl<'a> Integrator<'a> {
             }
             // Analytic lights and environments are not in the accelerator: the ray collects their
             // (MIS-weighted) radiance up to the scene hit or on leaving the scene.
-            let pdf_prev = st.prev.map(|(pdf, _)| pdf);
             let t_hit = hit.as_ref().map_or(f32::INFINITY, |h| h.t);
-            let le = self.lights.emitted(&ray, t_hit, pdf_prev);
+            let le = self.lights.emitted(&ray, t_hit, st.prev);
             l += st.beta * le;
             let Some(hit) = hit else {
                 if FEATURES {
                     features.escaped();
                 }
-                l += st.beta * self.lights.escaped(ray.d, pdf_prev);
+                l += st.beta * self.lights.escaped(ray.d, st.prev);
                 if bounce == 0 && le == Vec3::ZERO {
                     alpha = 0.0;
                 }
@@ -195,13 +196,13 @@ impl<'a> Integrator<'a> {
 
     /// MIS weight of emission found by a BSDF sample from `prev` (1 for camera rays and after
     /// delta lobes).
-    fn emission_weight(&self, si: &SurfaceInteraction, prev: Option<(f32, Vec3)>) -> f32 {
+    fn emission_weight(&self, si: &SurfaceInteraction, prev: Option<(f32, LightContext)>) -> f32 {
         match prev {
             None => 1.0,
             Some((pdf_bsdf, from)) => {
                 let pdf_light = self
                     .lights
-                    .pdf_triangle(si.inst, si.prim, from, si.p, si.ng);
+                    .pdf_triangle(si.inst, si.prim, &from, si.p, si.ng);
                 power_heuristic(pdf_bsdf, pdf_light)
             }
         }
@@ -223,7 +224,9 @@ impl<'a> Integrator<'a> {
         if si.bsdf.is_delta() {
             return None;
         }
-        let ls = self.lights.sample(self.scene, si.p, u_choice, u_light)?;
+        let ls = self
+            .lights
+            .sample(self.scene, &light_context(si), u_choice, u_light)?;
         let cos = ls.wi.dot(si.bsdf.frame.n);
         // The shading and geometric normals must agree on the side; behind the surface only
         // transmissive materials see lights.
@@ -297,7 +300,7 @@ impl<'a> Integrator<'a> {
         // fully; straight through a thin wall the previous vertex's MIS state holds, since shadow
         // rays see through it.
         if !s.straight {
-            st.prev = (!s.delta).then_some((s.pdf, si.p));
+            st.prev = (!s.delta).then_some((s.pdf, light_context(si)));
         }
         let ray = Ray::new(origin_towards(si, s.wi), s.wi)
             .with_seed(leave.seed)
@@ -313,13 +316,18 @@ impl<'a> Integrator<'a> {
     }
 }
 
+/// Where lights are chosen for at `si`: light samples and the BSDF samples leaving it share it.
+fn light_context(si: &SurfaceInteraction) -> LightContext {
+    LightContext { p: si.p, n: si.ng }
+}
+
 /// What a path carries from vertex to vertex besides its ray.
 struct PathState {
     /// Throughput.
     beta: Vec3,
     /// The pdf of the BSDF sample that produced the ray, and where it left from (for MIS on
     /// emitters the ray hits).
-    prev: Option<(f32, Vec3)>,
+    prev: Option<(f32, LightContext)>,
     /// Absorption coefficient of the medium the ray travels through (zero outside any).
     medium: Vec3,
     /// Product of the eta^2 factors refraction put into `beta`, kept out of Russian roulette.

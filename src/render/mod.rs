@@ -21,6 +21,7 @@ use rayon::prelude::*;
 pub use crate::film::aov::FeatureImages;
 pub use camera::RayCamera;
 pub use integrator::Integrator;
+pub use light::LightSampler;
 
 use feature_film::{DepthAxis, FeatureAcc};
 use features::PathFeatures;
@@ -99,6 +100,8 @@ pub struct RenderSettings {
     /// Also accumulate the feature images (`RenderOutput::features`; not in the corner mode). Off,
     /// the render does exactly what it did before they existed.
     pub feature_images: bool,
+    /// How next-event estimation chooses among the lights.
+    pub light_sampler: LightSampler,
 }
 
 impl Default for RenderSettings {
@@ -121,6 +124,7 @@ impl Default for RenderSettings {
             frame_time: 0.0,
             sample_shard: None,
             feature_images: false,
+            light_sampler: LightSampler::Power,
         }
     }
 }
@@ -454,7 +458,13 @@ pub fn render_full(
     // an opaque scene's shadow rays are plain occlusion queries (Integrator).
     let features = Features::of(scene, camera);
     let ctx = Ctx {
-        integrator: Integrator::new(scene, accel, settings.max_depth, &features),
+        integrator: Integrator::new(
+            scene,
+            accel,
+            settings.max_depth,
+            &features,
+            settings.light_sampler,
+        ),
         cam: RayCamera::new(camera, w, h).with_time(features.motion),
         filter: Filter::new(settings.filter, settings.filter_radius),
         settings,

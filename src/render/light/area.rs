@@ -3,6 +3,7 @@
 
 use glam::{Vec2, Vec3};
 
+use super::bounds::LightBounds;
 use super::LightSample;
 
 /// An analytic area light (sphere, disk, rectangle): it emits and is seen but occludes nothing, so
@@ -20,6 +21,9 @@ pub(super) trait AreaLight {
     /// The distance along unit `d` from `o` to the light's emitting side, and the solid-angle pdf
     /// (choice left out) with which `sample` picks that direction from `o`.
     fn hit(&self, o: Vec3, d: Vec3) -> Option<(f32, f32)>;
+
+    /// The bounds of the light's emission, of power `phi`, for the light BVH.
+    fn bounds(&self, phi: f32) -> LightBounds;
 }
 
 /// The solid-angle pdf, times `scale`, of a point drawn uniformly over `area`, seen from squared

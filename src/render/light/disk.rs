@@ -6,6 +6,7 @@ use std::f32::consts::PI;
 use glam::{Vec2, Vec3};
 
 use super::area::{area_sample, hit_plane, AreaLight};
+use super::bounds::LightBounds;
 use super::LightSample;
 use crate::render::bsdf::luminance;
 use crate::sample::warp::concentric_disk;
@@ -53,5 +54,13 @@ impl AreaLight for Disk {
             // `area_pdf(1.0, t * t, cos, self.area())`, multiplied out in the order the renders
             // were made with: the folded form changes the last bits of images with disk lights.
             .map(|(t, cos)| (t, t * t / (cos * PI * radius * radius)))
+    }
+
+    fn bounds(&self, phi: f32) -> LightBounds {
+        // The disk's box: along each axis its extent is the radius times the sine to the normal.
+        let n = self.normal;
+        let e = (Vec3::ONE - n * n).max(Vec3::ZERO).powf(0.5) * self.shape.radius;
+        let c = self.shape.center;
+        LightBounds::planar(&[c - e, c + e], n, phi, false)
     }
 }

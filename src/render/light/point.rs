@@ -5,6 +5,8 @@ use std::f32::consts::PI;
 
 use glam::Vec3;
 
+use super::bounds::LightBounds;
+use crate::geometry::Aabb;
 use crate::render::bsdf::luminance;
 
 /// Direction, distance and arriving intensity (already divided by distance squared) from `p`.
@@ -17,4 +19,9 @@ pub(super) fn sample(position: Vec3, intensity: Vec3, p: Vec3) -> Option<(Vec3, 
 /// The light's weight among the lights: the luminance of its flux.
 pub(super) fn power(intensity: Vec3) -> f32 {
     4.0 * PI * luminance(intensity)
+}
+
+/// The bounds of the light's emission, of power `phi`, for the light BVH.
+pub(super) fn bounds(position: Vec3, phi: f32) -> LightBounds {
+    LightBounds::omni(Aabb::from_points([position]), phi)
 }

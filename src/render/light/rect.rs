@@ -6,6 +6,7 @@ use std::f32::consts::PI;
 use glam::{Vec2, Vec3};
 
 use super::area::{area_pdf, area_sample, hit_plane, AreaLight};
+use super::bounds::LightBounds;
 use super::LightSample;
 use crate::render::bsdf::luminance;
 use crate::scene::RectLight;
@@ -65,5 +66,16 @@ impl AreaLight for Rect {
         hit_plane(o, d, self.shape.corner, self.normal)
             .filter(|&(t, _)| self.contains(o + d * t))
             .map(|(t, cos)| (t, area_pdf(1.0, t * t, cos, self.area)))
+    }
+
+    fn bounds(&self, phi: f32) -> LightBounds {
+        let s = &self.shape;
+        let corners = [
+            s.corner,
+            s.corner + s.edge_u,
+            s.corner + s.edge_v,
+            s.corner + s.edge_u + s.edge_v,
+        ];
+        LightBounds::planar(&corners, self.normal, phi, false)
     }
 }

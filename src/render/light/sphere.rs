@@ -6,7 +6,9 @@ use std::f32::consts::PI;
 use glam::{Vec2, Vec3};
 
 use super::area::AreaLight;
+use super::bounds::LightBounds;
 use super::LightSample;
+use crate::geometry::Aabb;
 use crate::render::bsdf::luminance;
 use crate::sample::warp::{uniform_cone, uniform_cone_pdf, uniform_cone_solid_angle};
 use crate::scene::SphereLight;
@@ -49,6 +51,11 @@ impl AreaLight for SphereLight {
             self.radius * self.radius,
         )?;
         Some((t, uniform_cone_pdf(omc_max)))
+    }
+
+    fn bounds(&self, phi: f32) -> LightBounds {
+        let r = Vec3::splat(self.radius);
+        LightBounds::omni(Aabb::from_points([self.center - r, self.center + r]), phi)
     }
 }
 

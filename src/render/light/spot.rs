@@ -5,6 +5,8 @@ use std::f32::consts::PI;
 
 use glam::Vec3;
 
+use super::bounds::{Cone, LightBounds};
+use crate::geometry::Aabb;
 use crate::render::bsdf::luminance;
 
 /// Direction, distance and arriving intensity (already divided by distance squared) from `p`; `None`
@@ -32,4 +34,28 @@ pub(super) fn sample(
 /// The light's weight among the lights: the luminance of the flux into its outer cone.
 pub(super) fn power(intensity: Vec3, cos_outer: f32) -> f32 {
     2.0 * PI * (1.0 - cos_outer) * luminance(intensity)
+}
+
+/// The bounds of the light's emission, of power `phi`, for the light BVH: full strength within
+/// the inner cone, some out to the outer one.
+pub(super) fn bounds(
+    position: Vec3,
+    direction: Vec3,
+    cos_inner: f32,
+    cos_outer: f32,
+    phi: f32,
+) -> LightBounds {
+    // An inner cone wider than the outer one still lights only the outer one.
+    let outer = cos_outer.clamp(-1.0, 1.0).acos();
+    let inner = cos_inner.clamp(-1.0, 1.0).acos().min(outer);
+    LightBounds {
+        bounds: Aabb::from_points([position]),
+        phi,
+        normals: Cone {
+            w: direction.normalize_or(Vec3::Z),
+            cos_theta: inner.cos(),
+        },
+        cos_theta_e: (outer - inner).cos(),
+        two_sided: false,
+    }
 }

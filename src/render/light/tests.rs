@@ -9,14 +9,20 @@ use crate::render::bsdf::luminance;
 use crate::sample::warp::concentric_disk;
 use crate::scene::{DiskLight, EnvMap, RectLight, SphereLight};
 
-fn lights_only(lights: Vec<Light>) -> (Scene, LightSet) {
+fn lights_only(lights: Vec<Light>, sampler: LightSampler) -> (Scene, LightSet) {
     let scene = Scene {
         lights,
         ..Default::default()
     };
-    let set = LightSet::new(&scene);
+    let set = LightSet::with_sampler(&scene, sampler);
     (scene, set)
 }
+
+/// The light context of the shading point of these tests: the origin, on a plane facing +Y.
+const AT_ORIGIN: LightContext = LightContext {
+    p: Vec3::ZERO,
+    n: Vec3::Y,
+};
 
 /// A jittered n x n grid of points in [0, 1)^2 (fixed jitter from a hash, so tests repeat).
 fn grid(n: usize) -> impl Iterator<Item = Vec2> {
@@ -37,15 +43,29 @@ fn grid(n: usize) -> impl Iterator<Item = Vec2> {
 
 /// Irradiance at the origin on a plane facing +Y, estimated three ways: light sampling alone,
 /// cosine-weighted BSDF sampling alone (rays finding the lights), and both combined by MIS.
+///
+/// With one light the light BVH has only to agree with choosing by power: it picks the light with
+/// probability 1 wherever the light can reach, so both give the same estimates.
 fn irradiance(lights: Vec<Light>) -> [f64; 3] {
-    let (scene, set) = lights_only(lights);
+    let by_power = irradiance_by(lights.clone(), LightSampler::Power);
+    if lights.len() == 1 {
+        let by_bvh = irradiance_by(lights, LightSampler::Bvh);
+        for (p, b) in by_power.iter().zip(by_bvh) {
+            assert!((p - b).abs() <= 1e-9 * p.abs(), "power {p}, BVH {b}");
+        }
+    }
+    by_power
+}
+
+fn irradiance_by(lights: Vec<Light>, sampler: LightSampler) -> [f64; 3] {
+    let (scene, set) = lights_only(lights, sampler);
     let n = 256;
     let count = (n * n) as f64;
     let (mut light, mut bsdf, mut mis) = (0.0f64, 0.0f64, 0.0f64);
     for (k, u) in grid(n).enumerate() {
         // Light sampling (a light choice per stratum, decorrelated from `u`).
         let u_choice = ((k as f32) * 0.618_034).fract();
-        if let Some(ls) = set.sample(&scene, Vec3::ZERO, u_choice, u) {
+        if let Some(ls) = set.sample(&scene, &AT_ORIGIN, u_choice, u) {
             let cos = ls.wi.y;
             if cos > 0.0 && ls.pdf > 0.0 {
                 let pdf_bsdf = cos / PI;
@@ -65,7 +85,8 @@ fn irradiance(lights: Vec<Light>) -> [f64; 3] {
         let ray = Ray::new(Vec3::ZERO, wi);
         let le = set.emitted(&ray, f32::INFINITY, None) + set.escaped(wi, None);
         bsdf += (luminance(le) * wi.y / pdf) as f64;
-        let lw = set.emitted(&ray, f32::INFINITY, Some(pdf)) + set.escaped(wi, Some(pdf));
+        let prev = Some((pdf, AT_ORIGIN));
+        let lw = set.emitted(&ray, f32::INFINITY, prev) + set.escaped(wi, prev);
         mis += (luminance(lw) * wi.y / pdf) as f64;
     }
     [light / count, bsdf / count, mis / count]
@@ -164,6 +185,67 @@ fn rect_light_irradiance_matches_the_form_factor() {
     assert_close(e, PI64 * l as f64 * f, 0.01, "rect, centre");
 }
 
+#[test]
+fn many_lights_irradiance_sums_their_closed_forms_by_power_and_by_bvh() {
+    let l = 1.3f32;
+    let mut lights = Vec::new();
+    let mut expected = 0.0f64;
+    // Horizontal rectangles facing down at assorted offsets and heights; the last two face up,
+    // away from the plane, and send nothing.
+    for k in 0..8 {
+        let (x0, z0) = (-1.5 + 0.45 * k as f32, -0.8 + 0.3 * (k % 3) as f32);
+        let (a, b, h) = (0.3 + 0.05 * k as f32, 0.4, 0.8 + 0.25 * k as f32);
+        let up = k >= 6;
+        let (edge_u, edge_v) = (Vec3::new(a, 0.0, 0.0), Vec3::new(0.0, 0.0, b));
+        lights.push(Light::Rect(RectLight {
+            corner: Vec3::new(x0, h, z0),
+            edge_u: if up { edge_v } else { edge_u },
+            edge_v: if up { edge_u } else { edge_v },
+            radiance: Vec3::splat(l * (1.0 + k as f32 * 0.3)),
+        }));
+        if !up {
+            let f = |x: f32, z: f32| corner_form_factor(x as f64, z as f64, h as f64);
+            let ff = f(x0 + a, z0 + b) - f(x0, z0 + b) - f(x0 + a, z0) + f(x0, z0);
+            expected += PI64 * (l * (1.0 + k as f32 * 0.3)) as f64 * ff;
+        }
+    }
+    // Spheres wholly above the plane: a point source of intensity pi r^2 L at the centre.
+    for k in 0..4 {
+        let c = Vec3::new(
+            -1.0 + 0.7 * k as f32,
+            1.0 + 0.4 * k as f32,
+            0.5 - 0.3 * k as f32,
+        );
+        let r = 0.1 + 0.05 * k as f32;
+        lights.push(Light::Sphere(SphereLight {
+            center: c,
+            radius: r,
+            radiance: Vec3::splat(l),
+        }));
+        let (c, r) = (c.as_dvec3(), r as f64);
+        expected += PI64 * l as f64 * r * r / c.length_squared() * c.y / c.length();
+    }
+    // And a disk straight above.
+    let (radius, h) = (0.5f32, 2.5f32);
+    lights.push(Light::Disk(DiskLight {
+        center: Vec3::new(0.0, h, 0.0),
+        normal: -Vec3::Y,
+        radius,
+        radiance: Vec3::splat(l),
+    }));
+    expected += PI64 * l as f64 * (radius * radius / (radius * radius + h * h)) as f64;
+    assert!(lights_only(lights.clone(), LightSampler::Bvh).1.uses_bvh());
+    for sampler in [LightSampler::Power, LightSampler::Bvh] {
+        let e = irradiance_by(lights.clone(), sampler);
+        assert_close(
+            e,
+            expected,
+            0.01,
+            &format!("{} lights by {sampler}", lights.len()),
+        );
+    }
+}
+
 /// A 32 x 16 map: dark below the horizon, a sky gradient above, a small bright sun.
 fn sky_map() -> EnvMap {
     let (w, h) = (32, 16);
@@ -185,10 +267,13 @@ fn sky_map() -> EnvMap {
 #[test]
 fn environment_map_pdf_integrates_to_one_and_matches_its_samples() {
     for map in [sky_map(), sky_map().rotated_y(0.9)] {
-        let (scene, set) = lights_only(vec![Light::Environment {
-            radiance: Vec3::ONE,
-            map: Some(Arc::new(map)),
-        }]);
+        let (scene, set) = lights_only(
+            vec![Light::Environment {
+                radiance: Vec3::ONE,
+                map: Some(Arc::new(map)),
+            }],
+            LightSampler::Power,
+        );
         // Midpoint rule over (theta, phi), fine enough to resolve every pixel.
         let (nt, np) = (512, 1024);
         let mut total = 0.0f64;
@@ -207,7 +292,7 @@ fn environment_map_pdf_integrates_to_one_and_matches_its_samples() {
         }
         assert!((total - 1.0).abs() < 2e-3, "pdf integrates to {total}");
         for u in grid(16) {
-            let ls = set.sample(&scene, Vec3::ZERO, 0.5, u).unwrap();
+            let ls = set.sample(&scene, &AT_ORIGIN, 0.5, u).unwrap();
             let (li, pdf) = set.environment_radiance(0, ls.wi);
             assert!((pdf - ls.pdf).abs() <= 1e-3 * pdf, "{pdf} vs {}", ls.pdf);
             assert!((li - ls.li).length() <= 1e-3 * li.length().max(1e-3));
@@ -351,12 +436,12 @@ fn emissive_triangle_irradiance_matches_lambert_near_and_far() {
             let n = 128;
             let mut e = 0.0f64;
             for (k, u) in grid(n).enumerate() {
-                let ls = set.sample(&scene, Vec3::ZERO, (k as f32 * 0.618_034).fract(), u);
+                let ls = set.sample(&scene, &AT_ORIGIN, (k as f32 * 0.618_034).fract(), u);
                 let Some(ls) = ls else { continue };
                 // The pdf a BSDF-sampled ray would be weighed with, at the same point.
                 let q = ls.wi * ls.dist;
                 let nq = (v[1] - v[0]).cross(v[2] - v[0]).normalize();
-                let pdf = set.pdf_triangle(0, 0, Vec3::ZERO, q, nq);
+                let pdf = set.pdf_triangle(0, 0, &AT_ORIGIN, q, nq);
                 assert!(
                     (pdf - ls.pdf).abs() <= 1e-3 * ls.pdf,
                     "{what}: {pdf} vs {}",

@@ -7,6 +7,7 @@ use std::f32::consts::PI;
 use glam::{Vec2, Vec3};
 
 use super::area::{area_pdf, area_sample};
+use super::bounds::LightBounds;
 use super::LightSample;
 use crate::render::bsdf::luminance;
 use crate::render::surface::emission;
@@ -67,6 +68,13 @@ impl Triangle {
             n = -n;
         }
         area_sample(p, q, n, self.area, li, choice)
+    }
+
+    /// The bounds of the triangle's emission, of power `phi`, for the light BVH.
+    pub fn bounds(&self, phi: f32) -> LightBounds {
+        let v = &self.v;
+        let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or(Vec3::Z);
+        LightBounds::planar(v, n, phi, true)
     }
 
     /// The solid-angle pdf, times `choice`, with which `sample` picks point `q` (normal `nq`) from `p`.

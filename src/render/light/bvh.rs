@@ -1,0 +1,459 @@
+//! The light BVH (Conty Estevez & Kulla 2018; pbrt-v4's `BVHLightSampler`): lights with bounds in
+//! a binary tree, one chosen per shading point by descending it in proportion to each child's
+//! `LightBounds::importance` there; lights at infinity are chosen beside it by power.
+//!
+//! The probability of a choice is the product of the child probabilities along the light's path,
+//! which every light keeps as a bit trail, so `pmf` repeats `choose`'s arithmetic exactly.
+
+use glam::Vec3;
+
+use super::alias::AliasTable;
+use super::bounds::{LightBounds, PackedBounds};
+use crate::geometry::Aabb;
+
+/// Most lights in a leaf, chosen among by power: fewer tree levels to descend (each costs two
+/// importance bounds), at the price of a blind choice among a few neighbours.
+const LEAF_LIGHTS: usize = 4;
+/// Buckets per axis of the split search.
+const BUCKETS: usize = 12;
+/// From this depth on, nodes split in the middle, so no trail outgrows its 64 bits (2^32 lights).
+const BALANCED_FROM_DEPTH: u32 = 32;
+/// The largest f32 below 1, where remapped choice numbers are clamped.
+const ONE_MINUS_EPS: f32 = 1.0 - f32::EPSILON / 2.0;
+
+#[derive(Clone, Debug)]
+struct Node {
+    bounds: PackedBounds,
+    /// A leaf's first light in `LightBvh::leaf_lights`, or an interior node's second child (its
+    /// first follows it).
+    index: u32,
+    /// A leaf's number of lights; 0 for interior nodes.
+    lights: u32,
+}
+
+/// A light of a leaf: its entry, and its share of the leaf's power with the running sum of the
+/// shares up to it (the choice within the leaf).
+#[derive(Clone, Copy, Debug)]
+struct LeafLight {
+    entry: u32,
+    share: f32,
+    cdf: f32,
+}
+
+/// Where a light sits: its bit trail from the root (bit k: the right child at depth k) and its
+/// share of its leaf.
+#[derive(Clone, Copy, Debug)]
+enum Place {
+    Tree(u64, f32),
+    /// Chosen by power among the lights at infinity, at this index of their table.
+    Infinite(u32),
+    /// Never chosen (no power, or no bounds and not at infinity).
+    Nowhere,
+}
+
+#[derive(Clone, Debug)]
+pub(super) struct LightBvh {
+    nodes: Vec<Node>,
+    leaf_lights: Vec<LeafLight>,
+    places: Vec<Place>,
+    infinite: Vec<u32>,
+    infinite_table: AliasTable,
+    /// The probability of choosing among the lights at infinity rather than in the tree: their
+    /// share of the total power.
+    p_infinite: f32,
+}
+
+impl LightBvh {
+    /// The BVH over `n` lights: `bounds(i)` for each light in the tree (`None` for lights at
+    /// infinity, whose weights come from `weights`).
+    pub fn new(weights: &[f32], bounds: impl Fn(usize) -> Option<LightBounds>) -> Self {
+        let n = weights.len();
+        let mut places = vec![Place::Nowhere; n];
+        let (mut items, mut infinite) = (Vec::new(), Vec::new());
+        let (mut tree_power, mut infinite_power) = (0.0f64, 0.0f64);
+        for (i, &w) in weights.iter().enumerate() {
+            if w.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) || !w.is_finite() {
+                continue;
+            }
+            match bounds(i) {
+                Some(b) => {
+                    tree_power += b.phi as f64;
+                    items.push((i as u32, b));
+                }
+                None => {
+                    places[i] = Place::Infinite(infinite.len() as u32);
+                    infinite_power += w as f64;
+                    infinite.push(i as u32);
+                }
+            }
+        }
+        let infinite_weights: Vec<f32> = infinite.iter().map(|&i| weights[i as usize]).collect();
+        let total = tree_power + infinite_power;
+        let p_infinite = if total > 0.0 {
+            (infinite_power / total) as f32
+        } else {
+            0.0
+        };
+        let mut tree = Tree {
+            nodes: Vec::with_capacity(2 * items.len()),
+            leaf_lights: Vec::with_capacity(items.len()),
+            places: &mut places,
+        };
+        if !items.is_empty() {
+            tree.build(&mut items, 0, 0);
+        }
+        let (nodes, leaf_lights) = (tree.nodes, tree.leaf_lights);
+        Self {
+            nodes,
+            leaf_lights,
+            places,
+            infinite,
+            infinite_table: AliasTable::new(&infinite_weights),
+            p_infinite,
+        }
+    }
+
+    /// A light for the point `p` with unit normal `n` (zero: none) and `u` in [0, 1), with its
+    /// probability.
+    pub fn choose(&self, p: Vec3, n: Vec3, u: f32) -> Option<(usize, f32)> {
+        if u < self.p_infinite || self.nodes.is_empty() {
+            let u = (u / self.p_infinite).min(ONE_MINUS_EPS);
+            let (k, pk) = self.infinite_table.sample(u)?;
+            return Some((self.infinite[k] as usize, pk * self.p_infinite));
+        }
+        let mut u = ((u - self.p_infinite) / (1.0 - self.p_infinite)).min(ONE_MINUS_EPS);
+        let mut pmf = 1.0 - self.p_infinite;
+        let mut at = 0;
+        loop {
+            let node = &self.nodes[at];
+            if node.lights > 0 {
+                if at == 0 && node.bounds.importance(p, n) <= 0.0 {
+                    return None;
+                }
+                let leaf = &self.leaf_lights[node.index as usize..][..node.lights as usize];
+                let l = leaf
+                    .iter()
+                    .find(|l| u < l.cdf)
+                    .unwrap_or(&leaf[leaf.len() - 1]);
+                return Some((l.entry as usize, pmf * l.share));
+            }
+            let (left, right) = (at + 1, node.index as usize);
+            let p_left = self.p_left(left, right, p, n)?;
+            // Written as selects: which way `u` goes is a coin toss the branch predictor loses.
+            let go_left = u < p_left;
+            let (below, share) = if go_left {
+                (0.0, p_left)
+            } else {
+                (p_left, 1.0 - p_left)
+            };
+            u = ((u - below) / share).min(ONE_MINUS_EPS);
+            pmf *= share;
+            at = if go_left { left } else { right };
+        }
+    }
+
+    /// The probability that `choose` picks light `i` for `p` and `n`.
+    pub fn pmf(&self, p: Vec3, n: Vec3, i: usize) -> f32 {
+        let (mut trail, share) = match self.places[i] {
+            Place::Tree(t, share) => (t, share),
+            Place::Infinite(k) => return self.p_infinite * self.infinite_table.pmf(k as usize),
+            Place::Nowhere => return 0.0,
+        };
+        let mut pmf = 1.0 - self.p_infinite;
+        let mut at = 0;
+        loop {
+            let node = &self.nodes[at];
+            if node.lights > 0 {
+                let seen = at > 0 || node.bounds.importance(p, n) > 0.0;
+                return if seen { pmf * share } else { 0.0 };
+            }
+            let (left, right) = (at + 1, node.index as usize);
+            let Some(p_left) = self.p_left(left, right, p, n) else {
+                return 0.0;
+            };
+            if trail & 1 == 0 {
+                pmf *= p_left;
+                at = left;
+            } else {
+                pmf *= 1.0 - p_left;
+                at = right;
+            }
+            trail >>= 1;
+        }
+    }
+
+    /// The probability of descending to the left child, `None` when neither child can light the
+    /// point (the ratio in f64, so that two huge bounds near a point light still divide).
+    #[inline(always)]
+    fn p_left(&self, left: usize, right: usize, p: Vec3, n: Vec3) -> Option<f32> {
+        let il = self.nodes[left].bounds.importance(p, n) as f64;
+        let ir = self.nodes[right].bounds.importance(p, n) as f64;
+        let sum = il + ir;
+        (sum > 0.0).then(|| {
+            if il.is_infinite() {
+                1.0
+            } else {
+                (il / sum) as f32
+            }
+        })
+    }
+}
+
+/// The tree while it is built.
+struct Tree<'a> {
+    nodes: Vec<Node>,
+    leaf_lights: Vec<LeafLight>,
+    places: &'a mut [Place],
+}
+
+impl Tree<'_> {
+    /// Builds the subtree of `items` at `depth` with bit trail `trail`, appending its nodes (the
+    /// node first, then its left subtree, then its right) and recording each light's place.
+    fn build(&mut self, items: &mut [(u32, LightBounds)], depth: u32, trail: u64) -> LightBounds {
+        if items.len() <= LEAF_LIGHTS {
+            return self.leaf(items, trail);
+        }
+        let mid = split(items, depth).unwrap_or_else(|| middle_split(items));
+        let at = self.nodes.len();
+        self.nodes.push(Node {
+            bounds: items[0].1.packed(),
+            index: 0,
+            lights: 0,
+        });
+        let (left, right) = items.split_at_mut(mid);
+        let lb = self.build(left, depth + 1, trail);
+        self.nodes[at].index = self.nodes.len() as u32;
+        let rb = self.build(right, depth + 1, trail | (1 << depth));
+        let b = LightBounds::union(&lb, &rb);
+        self.nodes[at].bounds = b.packed();
+        b
+    }
+
+    fn leaf(&mut self, items: &[(u32, LightBounds)], trail: u64) -> LightBounds {
+        let b = items
+            .iter()
+            .map(|(_, b)| *b)
+            .reduce(|a, b| LightBounds::union(&a, &b))
+            .expect("a leaf has lights");
+        self.nodes.push(Node {
+            bounds: b.packed(),
+            index: self.leaf_lights.len() as u32,
+            lights: items.len() as u32,
+        });
+        let total: f64 = items.iter().map(|(_, l)| l.phi as f64).sum();
+        let mut cdf = 0.0f64;
+        for &(entry, l) in items {
+            let share = (l.phi as f64 / total) as f32;
+            cdf += l.phi as f64 / total;
+            self.places[entry as usize] = Place::Tree(trail, share);
+            self.leaf_lights.push(LeafLight {
+                entry,
+                share,
+                cdf: cdf as f32,
+            });
+        }
+        b
+    }
+}
+
+/// The split of `items` (sorted in place into two groups) of least surface-area-orientation
+/// cost over `BUCKETS` buckets of centroids along each axis; `None` where every centroid is the
+/// same or the depth calls for balance.
+fn split(items: &mut [(u32, LightBounds)], depth: u32) -> Option<usize> {
+    if depth >= BALANCED_FROM_DEPTH {
+        return None;
+    }
+    let total = items
+        .iter()
+        .fold(Aabb::EMPTY, |b, (_, l)| b.union(l.bounds));
+    let centroids = Aabb::from_points(items.iter().map(|(_, l)| l.centroid()));
+    let extent = total.extent();
+    let c_extent = centroids.extent();
+    let mut best: Option<(f32, usize, usize)> = None;
+    for axis in 0..3 {
+        // Also skips NaN extents.
+        if c_extent[axis].partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+            continue;
+        }
+        let bucket = |l: &LightBounds| {
+            let t = (l.centroid()[axis] - centroids.min[axis]) / c_extent[axis];
+            ((t * BUCKETS as f32) as usize).min(BUCKETS - 1)
+        };
+        let mut buckets: [Option<LightBounds>; BUCKETS] = [None; BUCKETS];
+        for (_, l) in items.iter() {
+            let b = &mut buckets[bucket(l)];
+            *b = Some(b.map_or(*l, |b| LightBounds::union(&b, l)));
+        }
+        // Boxes thin along the split axis are cheap to split across it.
+        let regularity = extent.max_element() / extent[axis].max(f32::MIN_POSITIVE);
+        let cost = |group: &[Option<LightBounds>]| {
+            group
+                .iter()
+                .flatten()
+                .copied()
+                .reduce(|a, b| LightBounds::union(&a, &b))
+                .map_or(0.0, |b| b.cost(regularity))
+        };
+        for s in 1..BUCKETS {
+            let c = cost(&buckets[..s]) + cost(&buckets[s..]);
+            if c.is_finite() && best.is_none_or(|(bc, _, _)| c < bc) {
+                best = Some((c, axis, s));
+            }
+        }
+    }
+    let (_, axis, s) = best?;
+    let t = |l: &LightBounds| (l.centroid()[axis] - centroids.min[axis]) / c_extent[axis];
+    let mut mid = 0;
+    for i in 0..items.len() {
+        let b = ((t(&items[i].1) * BUCKETS as f32) as usize).min(BUCKETS - 1);
+        if b < s {
+            items.swap(i, mid);
+            mid += 1;
+        }
+    }
+    (mid > 0 && mid < items.len()).then_some(mid)
+}
+
+/// Halves `items` by centroid along the axis where the centroids spread most.
+fn middle_split(items: &mut [(u32, LightBounds)]) -> usize {
+    let centroids = Aabb::from_points(items.iter().map(|(_, l)| l.centroid()));
+    let e = centroids.extent();
+    let axis = if e.x >= e.y && e.x >= e.z {
+        0
+    } else if e.y >= e.z {
+        1
+    } else {
+        2
+    };
+    let mid = items.len() / 2;
+    items.select_nth_unstable_by(mid, |a, b| {
+        a.1.centroid()[axis].total_cmp(&b.1.centroid()[axis])
+    });
+    mid
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::bounds::Cone;
+    use super::*;
+
+    fn unit(k: u64) -> f32 {
+        (crate::geometry::mix64(k) >> 40) as f32 / (1u64 << 24) as f32
+    }
+
+    fn point(k: u64) -> Vec3 {
+        Vec3::new(unit(3 * k), unit(3 * k + 1), unit(3 * k + 2)) * 4.0 - 2.0
+    }
+
+    /// `n` small lights of assorted power and facing, with one light at infinity when `sky`.
+    fn lights(n: usize, sky: bool) -> (Vec<f32>, Vec<Option<LightBounds>>) {
+        let mut weights = Vec::new();
+        let mut bounds = Vec::new();
+        for i in 0..n as u64 {
+            let c = point(i + 100);
+            let w = 0.1 + unit(7 * i + 5) * 3.0;
+            let normal = (point(i + 5000) + Vec3::splat(1e-3)).normalize();
+            weights.push(w);
+            bounds.push(Some(LightBounds {
+                bounds: Aabb::from_points([c - Vec3::splat(0.02), c + Vec3::splat(0.02)]),
+                phi: w,
+                normals: Cone {
+                    w: normal,
+                    cos_theta: 1.0,
+                },
+                cos_theta_e: 0.0,
+                two_sided: i % 3 == 0,
+            }));
+        }
+        // A light of no power is never chosen.
+        weights.push(0.0);
+        bounds.push(bounds[0].map(|b| LightBounds { phi: 0.0, ..b }));
+        if sky {
+            weights.push(5.0);
+            bounds.push(None);
+        }
+        (weights, bounds)
+    }
+
+    #[test]
+    fn choices_follow_the_pmf_and_only_lights_that_reach_are_chosen() {
+        for (n, sky) in [(1, false), (2, true), (37, false), (300, true)] {
+            let (weights, bounds) = lights(n, sky);
+            let bvh = LightBvh::new(&weights, |i| bounds[i]);
+            for k in 0..20u64 {
+                let p = point(k) * 1.5;
+                let nrm = if k % 2 == 0 {
+                    Vec3::ZERO
+                } else {
+                    point(k + 77).normalize()
+                };
+                let pmf: Vec<f32> = (0..weights.len()).map(|i| bvh.pmf(p, nrm, i)).collect();
+                assert_eq!(pmf[n], 0.0, "the powerless light");
+                // Unbiased: every light whose own bounds say it reaches the point can be chosen
+                // (its ancestors' bounds are looser). What leads only to lights that cannot is
+                // lost, or spent on them within a leaf.
+                for (i, b) in bounds.iter().enumerate().take(n) {
+                    if b.unwrap().importance(p, nrm) > 0.0 {
+                        assert!(pmf[i] > 0.0, "light {i} of {n}");
+                    }
+                }
+                let total: f32 = pmf.iter().sum();
+                assert!(total <= 1.0 + 1e-4, "{n} lights: pmf sums to {total}");
+                // A stratified sweep of u: each light's share of the strata is its pmf, and
+                // the probability returned with a choice is the pmf.
+                let m = 20_000;
+                let mut counts = vec![0u32; weights.len()];
+                let mut none = 0;
+                for j in 0..m {
+                    if let Some((i, pi)) = bvh.choose(p, nrm, (j as f32 + 0.5) / m as f32) {
+                        assert!((pi - pmf[i]).abs() <= 1e-5 * pmf[i].max(1e-3), "{i}");
+                        counts[i] += 1;
+                    } else {
+                        none += 1;
+                    }
+                }
+                let lost = none as f32 / m as f32;
+                assert!(
+                    (lost - (1.0 - total)).abs() <= 40.0 / m as f32,
+                    "{lost} vs {total}"
+                );
+                for (i, &c) in counts.iter().enumerate() {
+                    let f = c as f32 / m as f32;
+                    // The strata quantise the pmf's intervals: one stratum per tree level.
+                    assert!(
+                        (f - pmf[i]).abs() <= 40.0 / m as f32,
+                        "{n} lights, light {i}: chosen {f}, pmf {}",
+                        pmf[i]
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn far_from_all_lights_the_choice_is_by_power() {
+        let (weights, bounds) = lights(50, false);
+        let bvh = LightBvh::new(&weights, |i| bounds[i]);
+        let total: f32 = weights.iter().sum();
+        // Two-sided, isotropic lights seen from afar: the bounds' orientation terms all near 1.
+        let iso: Vec<Option<LightBounds>> = bounds
+            .iter()
+            .map(|b| {
+                b.map(|b| LightBounds {
+                    normals: Cone::SPHERE,
+                    ..b
+                })
+            })
+            .collect();
+        let far = LightBvh::new(&weights, |i| iso[i]);
+        let p = Vec3::new(1e6, 0.0, 0.0);
+        for (i, w) in weights.iter().enumerate().take(50) {
+            let expected = w / total;
+            assert!((far.pmf(p, Vec3::ZERO, i) - expected).abs() < 1e-3 * expected);
+        }
+        // Near a light, in front of it, its share rises above its power's share.
+        let b = bounds[7].unwrap();
+        let near = b.centroid() + b.normals.w * 0.05;
+        assert!(bvh.pmf(near, Vec3::ZERO, 7) > 2.0 * weights[7] / total);
+    }
+}
