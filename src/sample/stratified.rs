@@ -4,7 +4,7 @@
 
 use glam::Vec2;
 
-use super::{pixel_key, unit_float, Dim, Sampler};
+use super::{pixel_key, unit_float, Dim, Sampler, ONE_MINUS_EPS};
 use crate::geometry::mix64;
 
 #[derive(Clone, Debug)]
@@ -82,8 +82,6 @@ impl Sampler for StratifiedSampler {
         )
     }
 }
-
-const ONE_MINUS_EPS: f32 = 1.0 - f32::EPSILON / 2.0;
 
 /// Element `i` of a pseudo-random permutation of `0..n` chosen by `seed` (Kensler 2013, as in pbrt's
 /// `PermutationElement`): a bijection without storing the permutation.

@@ -10,6 +10,7 @@ use glam::Vec3;
 use super::alias::AliasTable;
 use super::bounds::{LightBounds, PackedBounds};
 use crate::geometry::Aabb;
+use crate::sample::ONE_MINUS_EPS;
 
 /// Most lights in a leaf, chosen among by power: fewer tree levels to descend (each costs two
 /// importance bounds), at the price of a blind choice among a few neighbours.
@@ -18,8 +19,6 @@ const LEAF_LIGHTS: usize = 4;
 const BUCKETS: usize = 12;
 /// From this depth on, nodes split in the middle, so no trail outgrows its 64 bits (2^32 lights).
 const BALANCED_FROM_DEPTH: u32 = 32;
-/// The largest f32 below 1, where remapped choice numbers are clamped.
-const ONE_MINUS_EPS: f32 = 1.0 - f32::EPSILON / 2.0;
 
 #[derive(Clone, Debug)]
 struct Node {
@@ -275,13 +274,9 @@ fn split(items: &mut [(u32, LightBounds)], depth: u32) -> Option<usize> {
         if c_extent[axis].partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
             continue;
         }
-        let bucket = |l: &LightBounds| {
-            let t = (l.centroid()[axis] - centroids.min[axis]) / c_extent[axis];
-            ((t * BUCKETS as f32) as usize).min(BUCKETS - 1)
-        };
         let mut buckets: [Option<LightBounds>; BUCKETS] = [None; BUCKETS];
         for (_, l) in items.iter() {
-            let b = &mut buckets[bucket(l)];
+            let b = &mut buckets[bucket_of(l, axis, &centroids)];
             *b = Some(b.map_or(*l, |b| LightBounds::union(&b, l)));
         }
         // Boxes thin along the split axis are cheap to split across it.
@@ -302,16 +297,20 @@ fn split(items: &mut [(u32, LightBounds)], depth: u32) -> Option<usize> {
         }
     }
     let (_, axis, s) = best?;
-    let t = |l: &LightBounds| (l.centroid()[axis] - centroids.min[axis]) / c_extent[axis];
     let mut mid = 0;
     for i in 0..items.len() {
-        let b = ((t(&items[i].1) * BUCKETS as f32) as usize).min(BUCKETS - 1);
-        if b < s {
+        if bucket_of(&items[i].1, axis, &centroids) < s {
             items.swap(i, mid);
             mid += 1;
         }
     }
     (mid > 0 && mid < items.len()).then_some(mid)
+}
+
+/// The bucket along `axis` of `l`'s centroid among `centroids` (of positive extent on `axis`).
+fn bucket_of(l: &LightBounds, axis: usize, centroids: &Aabb) -> usize {
+    let t = (l.centroid()[axis] - centroids.min[axis]) / centroids.extent()[axis];
+    ((t * BUCKETS as f32) as usize).min(BUCKETS - 1)
 }
 
 /// Halves `items` by centroid along the axis where the centroids spread most.

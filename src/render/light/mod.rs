@@ -158,13 +158,6 @@ pub struct LightContext {
     pub n: Vec3,
 }
 
-impl LightContext {
-    /// A point off any surface.
-    pub fn at(p: Vec3) -> Self {
-        Self { p, n: Vec3::ZERO }
-    }
-}
-
 /// The distribution lights are chosen from.
 enum Chooser {
     Power(AliasTable),
