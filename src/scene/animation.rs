@@ -4,6 +4,7 @@
 
 use glam::{Mat4, Quat, Vec3, Vec4};
 
+use super::animated_properties::AnimatedProperties;
 use super::{Aabb, Scene};
 use crate::geometry::motion::{Motion, MOTION_TOLERANCE};
 
@@ -75,7 +76,7 @@ impl Interpolation {
 
 /// The glTF sampler formulas over keys at `times`: `part(k, p)` is element `p` of key `k` (0 for
 /// step and linear; 0 in-tangent, 1 value, 2 out-tangent for cubic splines). Clamped outside the keys.
-fn interpolate<T>(
+pub(super) fn interpolate<T>(
     times: &[f32],
     interpolation: Interpolation,
     t: f32,
@@ -211,6 +212,8 @@ pub struct Animation {
     pub weights: Vec<WeightChannel>,
     /// Meshes with morph targets, posed by `pose` (before skinning).
     pub morphs: Vec<Morph>,
+    /// Material factors, punctual lights and camera fields of view that change over time.
+    pub properties: AnimatedProperties,
 }
 
 /// A mesh deformed by a skeleton: vertex = sum of weight_k (joint_k world x inverse bind_k) x rest.
@@ -319,7 +322,8 @@ impl Animation {
         self.channels
             .iter()
             .filter_map(|c| c.times.last().copied())
-            .fold(0.0, f32::max)
+            .chain(self.weights.iter().filter_map(|w| w.times.last().copied()))
+            .fold(self.properties.duration(), f32::max)
     }
 }
 
@@ -338,6 +342,8 @@ pub fn pose(scene: &mut Scene, frame_time: f32, shutter: [f32; 2]) {
     // motion blur).
     deform_meshes(scene, &anim, t_of(0.5));
     pose_cameras(scene, &anim, t_of, open);
+    // Factors, lights and fields of view too: once, mid-shutter.
+    super::animated_properties::apply(scene, &anim, t_of(0.5));
     scene.animation = Some(anim);
 }
 

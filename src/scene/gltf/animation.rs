@@ -7,10 +7,11 @@ use gltf::accessor::{DataType, Dimensions};
 use super::accessor::{component, read_elements, read_f32s, read_vec};
 use super::error::GltfError;
 use super::{Loader, Placed};
+use crate::scene::animated_properties::{AnimatedLight, Curve};
 use crate::scene::animation::{Channel, Interpolation, Morph, Node, Property, Skin, WeightChannel};
 use crate::scene::Animation;
 
-fn interpolation_of(i: gltf::animation::Interpolation) -> Interpolation {
+pub(super) fn interpolation_of(i: gltf::animation::Interpolation) -> Interpolation {
     match i {
         gltf::animation::Interpolation::Linear => Interpolation::Linear,
         gltf::animation::Interpolation::Step => Interpolation::Step,
@@ -33,7 +34,24 @@ impl Loader<'_> {
             return Ok(None);
         }
         let mut a = match doc.animations().nth(self.animation) {
-            Some(anim) => self.animation(&anim)?,
+            Some(anim) => {
+                let mut a = self.animation(&anim)?;
+                a.properties.lights = placed
+                    .lights
+                    .iter()
+                    .map(|l| AnimatedLight {
+                        light: l.light,
+                        node: l.node,
+                        local: l.local.clone(),
+                        color: l.color,
+                        intensity: l.intensity,
+                        color_curve: None,
+                        intensity_curve: None,
+                    })
+                    .collect();
+                self.pointer_channels(&anim, placed, &mut a)?;
+                a
+            }
             None if doc.animations().len() == 0 => Animation::default(),
             None => {
                 return Err(GltfError::NoAnimation {
@@ -58,16 +76,24 @@ impl Loader<'_> {
             .collect();
         a.instances = placed.instances.clone();
         a.cameras = cameras;
-        let moves = !a.channels.is_empty() || !a.skins.is_empty() || !a.morphs.is_empty();
+        let lights = std::mem::take(&mut a.properties.lights);
+        a.properties.lights = lights
+            .into_iter()
+            .filter(|l| l.color_curve.is_some() || l.intensity_curve.is_some() || a.moves(l.node))
+            .collect();
+        let moves = !a.channels.is_empty()
+            || !a.skins.is_empty()
+            || !a.morphs.is_empty()
+            || !a.properties.is_empty();
         Ok(moves.then_some(a))
     }
 
     /// A morph-target weights channel: key times and, per key element, one weight per target.
-    fn weight_channel(
+    pub(super) fn weight_channel(
         &self,
-        ch: &gltf::animation::Channel,
+        sampler: &gltf::animation::Sampler,
+        node: u32,
     ) -> Result<Option<WeightChannel>, GltfError> {
-        let sampler = ch.sampler();
         let interpolation = interpolation_of(sampler.interpolation());
         let times = self.key_times(&sampler.input())?;
         let output = sampler.output();
@@ -87,7 +113,7 @@ impl Loader<'_> {
             });
         }
         Ok(Some(WeightChannel {
-            node: ch.target().node().index() as u32,
+            node,
             interpolation,
             width: values.len() / elements,
             times,
@@ -96,7 +122,7 @@ impl Loader<'_> {
     }
 
     /// Key times of a sampler input: float SCALAR, finite and increasing.
-    fn key_times(&self, input: &gltf::Accessor) -> Result<Vec<f32>, GltfError> {
+    pub(super) fn key_times(&self, input: &gltf::Accessor) -> Result<Vec<f32>, GltfError> {
         if input.dimensions() != Dimensions::Scalar || input.data_type() != DataType::F32 {
             return Err(GltfError::KeyTimesType(input.index()));
         }
@@ -228,7 +254,7 @@ impl Loader<'_> {
                 gltf::animation::Property::Scale => Property::Scale,
                 gltf::animation::Property::MorphTargetWeights => {
                     let c = self
-                        .weight_channel(&ch)
+                        .weight_channel(&ch.sampler(), ch.target().node().index() as u32)
                         .map_err(|e| e.at(format!("{label}, channel {ci}")))?;
                     out.weights.extend(c);
                     continue;
@@ -278,5 +304,16 @@ impl Loader<'_> {
             });
         }
         Ok(out)
+    }
+}
+
+/// A node channel from a pointer's curve (rotations as quaternions xyzw, the rest xyz).
+pub(super) fn node_channel(node: u32, property: Property, curve: Curve) -> Channel {
+    Channel {
+        node,
+        property,
+        interpolation: curve.interpolation,
+        times: curve.times,
+        values: curve.values,
     }
 }

@@ -35,6 +35,14 @@ pub enum GltfError {
     /// A problem inside the element `at` (a primitive, a skin, an animation channel).
     #[error("{at}: {source}")]
     At { at: String, source: Box<GltfError> },
+    #[error("output accessor {accessor} is {found:?} but the pointer's property is {want:?}")]
+    PointerOutputType {
+        accessor: usize,
+        found: Dimensions,
+        want: Dimensions,
+    },
+    #[error("{at}: no sampler {sampler} in the animation")]
+    PointerSampler { at: String, sampler: usize },
     #[error("no animation {index} (the file has {count})")]
     NoAnimation { index: usize, count: usize },
     #[error("{what} has {len} elements but POSITION has {vertices}")]

@@ -8,13 +8,14 @@ use super::Loader;
 use crate::scene::{Camera, Light, Projection};
 
 impl Loader<'_> {
-    /// Adds a node's light, or a warning when its colour or direction is unusable.
+    /// Adds a node's light, or a warning when its colour or direction is unusable; gives the light
+    /// in its node's frame when it was added.
     pub(super) fn light(
         &mut self,
         light: &gltf::khr_lights_punctual::Light,
         world: Mat4,
         label: &str,
-    ) {
+    ) -> Option<Light> {
         let color = Vec3::from(light.color()) * light.intensity();
         let local = match light.kind() {
             Kind::Point => Light::Point {
@@ -46,9 +47,10 @@ impl Loader<'_> {
                 "{label}: light {} has no usable colour or direction; skipped",
                 light.index()
             ));
-            return;
+            return None;
         }
         self.scene.lights.push(placed);
+        Some(local)
     }
 }
 

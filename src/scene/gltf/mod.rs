@@ -19,6 +19,7 @@ mod lobes;
 mod material;
 mod mesh;
 pub mod meshopt;
+mod pointer;
 mod spec_gloss;
 #[cfg(test)]
 mod tests;
@@ -38,6 +39,7 @@ use super::{Camera, Instance, LoadError, Scene};
 
 /// Extensions glint implements: a file may require them, and using any other draws a warning.
 const SUPPORTED: &[&str] = &[
+    "KHR_animation_pointer",
     "KHR_lights_punctual",
     "KHR_materials_anisotropy",
     "KHR_materials_clearcoat",
@@ -99,7 +101,8 @@ fn load_inner(path: &Path, bytes: &[u8], animation: usize) -> Result<Scene, Gltf
         let json = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
         (json, None)
     };
-    let (doc, required) = document(json_bytes)?;
+    let (json_bytes, pointers) = pointer::extract(json_bytes)?;
+    let (doc, required) = document(&json_bytes)?;
     let mut buffers = accessor::read_buffers(&doc, base, blob)?;
     let doc = meshopt::decode_views(doc, &mut buffers)?;
     #[cfg(feature = "draco")]
@@ -119,6 +122,7 @@ fn load_inner(path: &Path, bytes: &[u8], animation: usize) -> Result<Scene, Gltf
         animation,
         skin_attrs: HashMap::new(),
         morph_attrs: HashMap::new(),
+        pointers,
     }
     .run(required)
 }
@@ -192,6 +196,8 @@ struct Loader<'a> {
     skin_attrs: HashMap<u32, SkinAttrs>,
     /// Morph targets of scene meshes, by mesh index.
     morph_attrs: HashMap<u32, Vec<MorphTarget>>,
+    /// KHR_animation_pointer channels of every animation.
+    pointers: Vec<pointer::PointerChannel>,
 }
 
 /// What the node walk placed, for the animation: the hierarchy as reached from the roots, and what
@@ -207,8 +213,21 @@ struct Placed {
     skinned: Vec<(u32, u32, usize)>,
     /// (scene mesh, node, default weights) of every primitive with morph targets placed.
     morphed: Vec<(u32, u32, Vec<f32>)>,
-    /// (glTF camera, camera) in the order met.
+    /// (glTF camera, camera) in the order met; sorted by glTF camera before the animation is read.
     cameras: Vec<(usize, Camera)>,
+    /// Every punctual light placed, in the order of `Scene::lights`.
+    lights: Vec<PlacedLight>,
+}
+
+/// A punctual light as placed: where it is in the scene, its node, the file's light, and its shape
+/// in the node's frame.
+struct PlacedLight {
+    light: u32,
+    node: u32,
+    source: usize,
+    local: crate::scene::Light,
+    color: Vec3,
+    intensity: f32,
 }
 
 impl Loader<'_> {
@@ -242,10 +261,7 @@ impl Loader<'_> {
                     .map(|&(_, n)| (k as u32, n))
             })
             .collect();
-        self.scene.cameras = std::mem::take(&mut placed.cameras)
-            .into_iter()
-            .map(|(_, c)| c)
-            .collect();
+        self.scene.cameras = placed.cameras.iter().map(|(_, c)| c.clone()).collect();
         self.scene.animation = self.file_animation(&placed, cam_nodes)?;
         if self.dropped > 0 {
             self.scene
@@ -335,7 +351,16 @@ impl Loader<'_> {
             }
         }
         if let Some(light) = node.light() {
-            self.light(&light, world, &label);
+            if let Some(local) = self.light(&light, world, &label) {
+                placed.lights.push(PlacedLight {
+                    light: (self.scene.lights.len() - 1) as u32,
+                    node: ni as u32,
+                    source: light.index(),
+                    local,
+                    color: Vec3::from(light.color()),
+                    intensity: light.intensity(),
+                });
+            }
         }
         if let Some(cam) = node.camera() {
             placed.camera_nodes.push((cam.index(), ni as u32));

@@ -762,3 +762,164 @@ fn vertex_colours_rgb_and_rgba_float_and_normalized() {
         assert!((c - expect).abs().max_element() < 1e-6, "{desc}: {c}");
     }
 }
+
+#[test]
+fn animation_pointer_moves_factors_lights_and_fov() {
+    // Keys at t = 0 and 1: base colour red -> blue, 0 -> 4 (emissive strength, light intensity),
+    // yfov 0.5 -> 1.5, and the light's node from the origin to y = 2.
+    let floats: Vec<f32> = TRI
+        .iter()
+        .flatten()
+        .copied()
+        .chain([0.0, 1.0])
+        .chain([1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0])
+        .chain([0.0, 4.0])
+        .chain([0.5, 1.5])
+        .chain([0.0, 0.0, 0.0, 0.0, 2.0, 0.0])
+        .collect();
+    let data: Vec<u8> = floats.iter().flat_map(|f| f.to_le_bytes()).collect();
+    let ptr = |sampler: usize, p: &str| {
+        format!(
+            r#"{{"sampler": {sampler}, "target": {{"path": "pointer", "extensions": {{"KHR_animation_pointer": {{"pointer": "{p}"}}}}}}}}"#
+        )
+    };
+    let channels = [
+        ptr(0, "/materials/0/pbrMetallicRoughness/baseColorFactor"),
+        ptr(
+            1,
+            "/materials/0/extensions/KHR_materials_emissive_strength/emissiveStrength",
+        ),
+        ptr(1, "/extensions/KHR_lights_punctual/lights/0/intensity"),
+        ptr(2, "/cameras/0/perspective/yfov"),
+        ptr(3, "/nodes/2/translation"),
+        ptr(1, "/materials/0/occlusionTexture/strength"),
+    ]
+    .join(",\n");
+    let json = format!(
+        r#"{{
+  "asset": {{"version": "2.0"}},
+  "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_animation_pointer"],
+  "extensions": {{"KHR_lights_punctual": {{"lights": [{{"type": "point", "color": [1, 0.5, 0.25], "intensity": 10}}]}}}},
+  "buffers": [{{"byteLength": {len}, "uri": "data:application/octet-stream;base64,{b64}"}}],
+  "bufferViews": [{{"buffer": 0, "byteLength": {len}}}],
+  "accessors": [
+{{"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 3, "type": "VEC3"}},
+{{"bufferView": 0, "byteOffset": 36, "componentType": 5126, "count": 2, "type": "SCALAR"}},
+{{"bufferView": 0, "byteOffset": 44, "componentType": 5126, "count": 2, "type": "VEC4"}},
+{{"bufferView": 0, "byteOffset": 76, "componentType": 5126, "count": 2, "type": "SCALAR"}},
+{{"bufferView": 0, "byteOffset": 84, "componentType": 5126, "count": 2, "type": "SCALAR"}},
+{{"bufferView": 0, "byteOffset": 92, "componentType": 5126, "count": 2, "type": "VEC3"}}
+  ],
+  "materials": [{{"emissiveFactor": [1, 1, 1],
+                 "extensions": {{"KHR_materials_emissive_strength": {{"emissiveStrength": 2}}}}}}],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "material": 0}}]}}],
+  "cameras": [{{"type": "perspective", "perspective": {{"yfov": 0.8, "znear": 0.1}}}}],
+  "nodes": [{{"mesh": 0}}, {{"camera": 0, "translation": [0, 0, 5]}},
+            {{"extensions": {{"KHR_lights_punctual": {{"light": 0}}}}}}],
+  "scenes": [{{"nodes": [0, 1, 2]}}],
+  "animations": [{{"channels": [{channels}],
+    "samplers": [{{"input": 1, "output": 2}}, {{"input": 1, "output": 3}},
+                 {{"input": 1, "output": 4}}, {{"input": 1, "output": 5}}]}}]
+}}"#,
+        len = data.len(),
+        b64 = base64(&data),
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("ptr.gltf");
+    std::fs::write(&p, json).unwrap();
+    let scene = Scene::load(&p).unwrap();
+    assert_eq!(scene.warnings.len(), 1, "{:?}", scene.warnings);
+    assert!(scene.warnings[0].contains("occlusionTexture/strength"));
+    // Unposed: the file's rest values.
+    assert_eq!(scene.materials[0].emissive, Vec3::splat(2.0));
+    let a = scene
+        .animation
+        .as_ref()
+        .expect("pointer channels animate the file");
+    assert_eq!(a.duration(), 1.0);
+    let mut s = scene.clone();
+    crate::scene::animation::pose(&mut s, 0.5, [0.0, 0.0]);
+    let m = &s.materials[0];
+    assert_eq!(m.base_color, glam::Vec4::new(0.5, 0.0, 0.5, 1.0));
+    assert_eq!(
+        m.emissive,
+        Vec3::splat(2.0),
+        "strength 2 at t = 0.5, factor 1"
+    );
+    assert_eq!(
+        s.lights[0],
+        Light::Point {
+            position: Vec3::new(0.0, 1.0, 0.0),
+            intensity: Vec3::new(2.0, 1.0, 0.5),
+        }
+    );
+    match s.cameras[0].projection {
+        Projection::Perspective { yfov, .. } => assert_eq!(yfov, 1.0),
+        ref p => panic!("{p:?}"),
+    }
+    // Past the last key the values hold.
+    let mut s = scene.clone();
+    crate::scene::animation::pose(&mut s, 9.0, [0.0, 0.0]);
+    assert_eq!(s.materials[0].emissive, Vec3::splat(4.0));
+    assert_eq!(
+        s.materials[0].base_color,
+        glam::Vec4::new(0.0, 0.0, 1.0, 1.0)
+    );
+}
+
+#[test]
+fn animation_pointer_with_a_bad_sampler_or_type_is_an_error() {
+    let data: Vec<u8> = TRI
+        .iter()
+        .flatten()
+        .copied()
+        .chain([0.0, 1.0, 0.0, 4.0])
+        .flat_map(|f| f.to_le_bytes())
+        .collect();
+    let doc = |sampler: usize, pointer: &str| {
+        format!(
+            r#"{{
+  "asset": {{"version": "2.0"}},
+  "buffers": [{{"byteLength": {len}, "uri": "data:application/octet-stream;base64,{b64}"}}],
+  "bufferViews": [{{"buffer": 0, "byteLength": {len}}}],
+  "accessors": [
+{{"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 3, "type": "VEC3"}},
+{{"bufferView": 0, "byteOffset": 36, "componentType": 5126, "count": 2, "type": "SCALAR"}},
+{{"bufferView": 0, "byteOffset": 44, "componentType": 5126, "count": 2, "type": "SCALAR"}}
+  ],
+  "materials": [{{}}],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "material": 0}}]}}],
+  "nodes": [{{"mesh": 0}}],
+  "animations": [{{"channels": [{{"sampler": {sampler}, "target": {{"path": "pointer",
+      "extensions": {{"KHR_animation_pointer": {{"pointer": "{pointer}"}}}}}}}}],
+    "samplers": [{{"input": 1, "output": 2}}]}}]
+}}"#,
+            len = data.len(),
+            b64 = base64(&data),
+        )
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let load = |json: String| {
+        let p = dir.path().join("bad.gltf");
+        std::fs::write(&p, json).unwrap();
+        Scene::load(&p).map(|_| ()).map_err(|e| e.to_string())
+    };
+    assert!(load(doc(0, "/materials/0/pbrMetallicRoughness/roughnessFactor")).is_ok());
+    let e = load(doc(3, "/materials/0/pbrMetallicRoughness/roughnessFactor")).unwrap_err();
+    assert!(e.contains("no sampler 3"), "{e}");
+    let e = load(doc(0, "/materials/0/emissiveFactor")).unwrap_err();
+    assert!(e.contains("Scalar") && e.contains("Vec3"), "{e}");
+    // A pointer at an element the file lacks is held, with a warning.
+    let p = dir.path().join("far.gltf");
+    std::fs::write(
+        &p,
+        doc(0, "/materials/7/pbrMetallicRoughness/roughnessFactor"),
+    )
+    .unwrap();
+    let s = Scene::load(&p).unwrap();
+    assert!(
+        s.warnings.iter().any(|w| w.contains("/materials/7/")),
+        "{:?}",
+        s.warnings
+    );
+}
