@@ -266,3 +266,71 @@ fn hundred_thousand_instances_load_and_build() {
         assert!((load + build).as_secs_f64() < 20.0);
     }
 }
+
+/// An asymmetric OBJ (a tall post on a wide slab, Y up), its vertices mapped by `f`.
+fn post_and_slab(f: impl Fn([f32; 3]) -> [f32; 3]) -> String {
+    let boxes = [
+        ([-1.0, 0.0, -0.6], [1.0, 0.2, 0.6]),
+        ([0.3, 0.2, -0.15], [0.6, 1.5, 0.15]),
+    ];
+    let mut obj = String::new();
+    for (k, (lo, hi)) in boxes.iter().enumerate() {
+        for c in 0..8 {
+            let p = [
+                if c & 1 == 0 { lo[0] } else { hi[0] },
+                if c & 2 == 0 { lo[1] } else { hi[1] },
+                if c & 4 == 0 { lo[2] } else { hi[2] },
+            ];
+            let q = f(p);
+            obj += &format!("v {} {} {}\n", q[0], q[1], q[2]);
+        }
+        let o = 8 * k + 1;
+        for face in [
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+        ] {
+            obj += &format!(
+                "f {} {} {} {}\n",
+                face[0] + o,
+                face[1] + o,
+                face[2] + o,
+                face[3] + o
+            );
+        }
+    }
+    obj
+}
+
+#[test]
+fn a_z_up_file_turned_up_renders_as_its_y_up_twin() {
+    use glint::render::job::Setup;
+    use glint::scene::UpAxis;
+    let dir = tempfile::tempdir().unwrap();
+    let y_up = dir.path().join("y.obj");
+    let z_up = dir.path().join("z.obj");
+    std::fs::write(&y_up, post_and_slab(|p| p)).unwrap();
+    // Z-up coordinates of the same model: (x, y, z) -> (x, -z, y).
+    std::fs::write(&z_up, post_and_slab(|[x, y, z]| [x, -z, y])).unwrap();
+    let render = |path: &Path, up: UpAxis| {
+        let mut opts = common::render_options(80, 60);
+        opts.up_axis = up;
+        let setup = Setup::new(Scene::load(path).unwrap(), &opts).unwrap();
+        let scene = Arc::new(setup.scene);
+        common::render_with(
+            &scene,
+            &setup.camera,
+            glint::accel::Backend::Bvh,
+            &settings(),
+        )
+    };
+    let reference = render(&y_up, UpAxis::Y);
+    let turned = render(&z_up, UpAxis::Z);
+    let unturned = render(&z_up, UpAxis::Y);
+    let (d_turned, d_unturned) = (rel_mad(&reference, &turned), rel_mad(&reference, &unturned));
+    assert!(d_turned < 1e-3, "turned Z-up file differs by {d_turned}");
+    assert!(d_unturned > 0.05, "unturned differs by only {d_unturned}");
+}

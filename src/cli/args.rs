@@ -9,7 +9,7 @@ use crate::film::aov::FeatureImages;
 use crate::film::denoise::{DenoiseError, DenoiseQuality, Denoiser};
 use crate::film::{Display, Image, ViewTransform};
 use crate::render::job::{DefaultLights, LensOptions, Overrides, Time};
-use crate::scene::{GgxScattering, Layering};
+use crate::scene::{GgxScattering, Layering, UpAxis};
 
 /// What `render` and `turntable` share: image size, sampling, backend, seed, lights, exposure,
 /// threads. Those a scene file may set are `Option`s: given or not, the job decides (the command
@@ -57,6 +57,10 @@ pub struct Args {
     /// Material variant to render (KHR_materials_variants; `glint info` lists a file's variants).
     #[arg(long, value_name = "NAME")]
     pub variant: Option<String>,
+    /// The axis the model file calls up (z: scans and CAD exports); the scene is turned so that it
+    /// points up in the image.
+    #[arg(long, value_enum, default_value_t = UpAxis::Y)]
+    pub model_up: UpAxis,
     /// How the dielectric specular layer weights the diffuse under it: the glTF spec's fresnel_mix
     /// or Blender-style albedo scaling [default: spec]
     #[arg(long, value_enum)]

@@ -154,6 +154,7 @@ impl RenderArgs {
             lens: self.lens.options(),
             time: self.time.options(),
             variant: self.common.variant.clone(),
+            up_axis: self.common.model_up,
         }
     }
 }

@@ -234,8 +234,9 @@ fn render_frames(args: &TurntableArgs, plan: &Plan) -> Result<()> {
     let scene = load(&args.input)?;
     let load_s = t0.elapsed().as_secs_f64();
     let basics = &plan.basics;
+    // The orbit frames the scene as the job will turn it.
     let mut orbit = Orbit::framing(
-        &scene.bounds(),
+        &scene.bounds().transformed(&args.common.model_up.to_y_up()),
         plan.yfov,
         basics.aspect(),
         args.elevation.to_radians(),
@@ -253,6 +254,7 @@ fn render_frames(args: &TurntableArgs, plan: &Plan) -> Result<()> {
         },
         default_lights: args.common.default_lights,
         variant: args.common.variant.clone(),
+        up_axis: args.common.model_up,
         ..Default::default()
     };
     let job = Setup::new(scene, &opts)?.build()?;

@@ -16,7 +16,7 @@ pub use view::{CameraChoice, CameraRef, Environment, LensOptions, View};
 use super::{render_full, RenderOutput, RenderSettings};
 use crate::accel::{self, Accel, AccelError, Backend};
 use crate::scene::features::Features;
-use crate::scene::{animation, defaults, Camera, Light, LoadError, Scene};
+use crate::scene::{animation, defaults, Camera, Light, LoadError, Scene, UpAxis};
 
 #[derive(Debug, thiserror::Error)]
 pub enum JobError {
@@ -40,6 +40,8 @@ pub enum JobError {
         camera: String,
         names: Vec<String>,
     },
+    #[error("{}: --model-up turns model files; this scene has CSG objects, so place its parts with the scene file's transforms", .0.display())]
+    TurnCsg(PathBuf),
     #[error("--eye and --look-at are the same point")]
     EyeIsTarget,
     #[error("--env-strength must be a finite number >= 0, not {0}")]
@@ -110,6 +112,8 @@ pub struct JobOptions {
     /// KHR_materials_variants: the material variant to dress the meshes in (an error when the scene
     /// has no variant of that name).
     pub variant: Option<String>,
+    /// The axis the file calls up; the scene is turned so that it becomes +Y.
+    pub up_axis: UpAxis,
 }
 
 impl JobOptions {
@@ -169,6 +173,10 @@ impl Setup {
             scene.select_variant(v)?;
         }
         animation::pose(&mut scene, time.frame_time, time.shutter);
+        if opts.up_axis != UpAxis::Y && !scene.csg.is_empty() {
+            return Err(JobError::TurnCsg(scene.source.clone()));
+        }
+        scene.turn_up(opts.up_axis);
         let load_seconds = start.elapsed().as_secs_f64();
         let file = file_overrides(&scene.settings, &scene.source, &opts.flags)?;
         let basics = resolve(opts.defaults, &file, &opts.flags);

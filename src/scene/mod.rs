@@ -1,6 +1,7 @@
 //! One in-memory `Scene` that every loader fills: meshes, instances, materials, textures, lights, cameras.
 //! Loaders (`gltf`, `obj`) produce it; accelerators and the integrator only read it.
 
+pub mod animated_properties;
 pub mod animation;
 pub mod decode;
 pub mod defaults;
@@ -19,6 +20,7 @@ mod quiet_panic;
 pub mod shading;
 pub mod texture;
 pub mod transform;
+pub mod up_axis;
 pub mod variants;
 
 use std::path::{Path, PathBuf};
@@ -35,6 +37,7 @@ pub use layers::MaterialLayers;
 pub use mesh::{Mesh, VertexAttrs};
 pub use shading::{GgxScattering, Layering, ShadingModel};
 pub use texture::{Texture, Wrap};
+pub use up_axis::UpAxis;
 pub use variants::MaterialVariants;
 
 /// One placement of a mesh in the world.
