@@ -6,6 +6,14 @@
 //! model instead: `illum 6`/`7` (refraction on) give a thick refracting dielectric, `illum 4`/`9`
 //! (glass on) a thin-walled one, both fully transmissive, tinted by `Tf` (default white) in place of
 //! Kd, and then `d` does not also cut the surface away.
+//!
+//! The PBR extension of MTL (Exocortex's, which Blender writes) maps onto the same model: Pr
+//! roughness, Pm metallic (each replaced by its map_Pr / map_Pm texture when given, as Blender's
+//! importer does), Ps sheen, Pc / Pcr clearcoat and its roughness, aniso / anisor anisotropy and
+//! its rotation (in turns), norm a tangent-space normal map. Pr, when given, beats Ns. Blender's
+//! own conventions are followed where it writes its Principled BSDF (checked against Blender 5.0's
+//! importer): Pc is four times the coat weight, and in a PBR material Ks is the "Specular IOR
+//! Level", whose 0.5 is the plain dielectric (glTF specular factor 1).
 
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -274,8 +282,72 @@ fn convert_material(
         mat.specular = 1.0;
         mat.thickness = if matches!(illum, 6 | 7) { 1.0 } else { 0.0 };
     }
+    apply_pbr(m, &mut mat);
     attach_textures(m, &mut mat, (search, files), scene, textures);
     mat
+}
+
+/// A scalar MTL statement of the PBR extension, when it is there and finite.
+fn pbr_scalar(m: &tobj::Material, key: &str) -> Option<f32> {
+    m.unknown_param
+        .get(key)
+        .and_then(|s| s.split_whitespace().next()?.parse::<f32>().ok())
+        .filter(|v| v.is_finite())
+}
+
+/// The PBR extension's scalar statements on `mat`.
+fn apply_pbr(m: &tobj::Material, mat: &mut Material) {
+    use super::layers::{Anisotropy, Clearcoat, Sheen};
+    let unit = |key| pbr_scalar(m, key).map(|v| v.clamp(0.0, 1.0));
+    let pbr = ["Pr", "Pm", "Ps", "Pc", "map_Pr", "map_Pm"]
+        .iter()
+        .any(|k| m.unknown_param.contains_key(*k));
+    if !pbr {
+        return;
+    }
+    if let Some(level) = m.specular.map(|ks| Vec3::from(ks).max_element()) {
+        mat.specular = (2.0 * level).clamp(0.0, 1.0);
+    }
+    if let Some(r) = unit("Pr") {
+        mat.roughness = r;
+    }
+    if let Some(metal) = unit("Pm") {
+        mat.metallic = metal;
+    }
+    if let Some(sheen) = m
+        .unknown_param
+        .get("Ps")
+        .and_then(|s| parse3(s))
+        .filter(|c| c.is_finite() && c.max_element() > 0.0)
+    {
+        mat.layers.sheen = Some(Sheen {
+            color: sheen.clamp(Vec3::ZERO, Vec3::ONE),
+            color_tex: None,
+            // Blender's default sheen roughness; the extension has no statement for it.
+            roughness: 0.5,
+            roughness_tex: None,
+        });
+    }
+    if let Some(coat) = pbr_scalar(m, "Pc")
+        .map(|c| (c / 4.0).clamp(0.0, 1.0))
+        .filter(|&c| c > 0.0)
+    {
+        mat.layers.clearcoat = Some(Clearcoat {
+            factor: coat,
+            factor_tex: None,
+            roughness: unit("Pcr").unwrap_or(0.0),
+            roughness_tex: None,
+            normal_tex: None,
+            normal_scale: 1.0,
+        });
+    }
+    if let Some(strength) = unit("aniso").filter(|&a| a > 0.0) {
+        mat.layers.anisotropy = Some(Anisotropy {
+            strength,
+            rotation: pbr_scalar(m, "anisor").unwrap_or(0.0) * std::f32::consts::TAU,
+            texture: None,
+        });
+    }
 }
 
 /// The MTL's texture maps (map_Kd, a normal/bump map, map_Ke) on `mat`.
@@ -300,6 +372,15 @@ fn attach_textures(
         mat.normal_tex =
             texture(t, false, (search, files), scene, textures, &label).map(TexRef::new);
     }
+    if let Some(t) = metal_rough_texture(m, (search, files), scene, &label) {
+        mat.metallic_roughness_tex = Some(TexRef::new(t));
+        if m.unknown_param.contains_key("map_Pr") {
+            mat.roughness = 1.0;
+        }
+        if m.unknown_param.contains_key("map_Pm") {
+            mat.metallic = 1.0;
+        }
+    }
     if let Some(t) = m.unknown_param.get("map_Ke") {
         mat.emissive_tex =
             texture(t, true, (search, files), scene, textures, &label).map(TexRef::new);
@@ -307,6 +388,58 @@ fn attach_textures(
             mat.emissive = Vec3::ONE;
         }
     }
+}
+
+/// map_Pr and map_Pm (grey images) as one glTF-layout texture: roughness in G, metallic in B, the
+/// channel of a missing map 1 (so its factor stands alone). At the larger map's size when they
+/// differ, the other sampled nearest.
+fn metal_rough_texture(
+    m: &tobj::Material,
+    (search, files): (&[PathBuf], &Files),
+    scene: &mut Scene,
+    label: &str,
+) -> Option<u32> {
+    let mut load = |key: &str| -> Option<super::decode::Rgba8> {
+        let spec = m.unknown_param.get(key)?;
+        let Some((file, bytes)) = resolve(spec, search, files) else {
+            scene.warnings.push(format!(
+                "{label}: texture '{}' not found; ignored",
+                spec.trim()
+            ));
+            return None;
+        };
+        super::decode::decode_rgba8(&bytes)
+            .map_err(|e| {
+                scene.warnings.push(format!(
+                    "{label}: cannot load texture '{}': {e}; ignored",
+                    file.display()
+                ))
+            })
+            .ok()
+    };
+    let (rough, metal) = (load("map_Pr"), load("map_Pm"));
+    let (width, height) = [&rough, &metal]
+        .iter()
+        .filter_map(|i| i.as_ref().map(|i| (i.width, i.height)))
+        .max_by_key(|&(w, h)| w * h)?;
+    let grey = |img: &Option<super::decode::Rgba8>, x: usize, y: usize| match img {
+        Some(i) => i.pixels[(y * i.height / height) * i.width + x * i.width / width][0],
+        None => 255,
+    };
+    let pixels = (0..height)
+        .flat_map(|y| (0..width).map(move |x| (x, y)))
+        .map(|(x, y)| [0, grey(&rough, x, y), grey(&metal, x, y), 255])
+        .collect();
+    scene.textures.push(Texture {
+        name: format!("{} metallic-roughness", m.name),
+        width,
+        height,
+        pixels,
+        srgb: false,
+        wrap_s: Wrap::Repeat,
+        wrap_t: Wrap::Repeat,
+    });
+    Some((scene.textures.len() - 1) as u32)
 }
 
 /// Finds and reads a texture named in an MTL statement (which may carry options such as `-bm 1`
@@ -483,5 +616,76 @@ mod tests {
         assert_eq!(veil.transmission, 0.0);
         assert_eq!(veil.alpha_mode, AlphaMode::Blend);
         assert_eq!(veil.base_color.w, 0.3);
+    }
+
+    #[test]
+    fn mtl_pbr_extension_maps_onto_the_gltf_model() {
+        let dir = tempfile::tempdir().unwrap();
+        // map_Pr is 2x1 (grey 51 | 204), map_Pm 1x1 (grey 255): the texture takes the larger size.
+        image::GrayImage::from_raw(2, 1, vec![51, 204])
+            .unwrap()
+            .save(dir.path().join("rough.png"))
+            .unwrap();
+        image::GrayImage::from_raw(1, 1, vec![255])
+            .unwrap()
+            .save(dir.path().join("metal.png"))
+            .unwrap();
+        std::fs::write(
+            dir.path().join("p.mtl"),
+            "newmtl scalars\nKd 0.8 0.1 0.1\nKs 0.25 0.25 0.25\nNs 900\nPr 0.3\nPm 1\nPs 0.2\nPc 2\nPcr 0.1\n\
+             aniso 0.4\nanisor 0.25\n\
+             newmtl maps\nKd 1 1 1\nPr 0.5\nPm 0.5\nmap_Pr rough.png\nmap_Pm metal.png\n\
+             newmtl rough_only\nPm 0.25\nmap_Pr rough.png\n\
+             newmtl plain\nNs 98\n",
+        )
+        .unwrap();
+        let p = dir.path().join("p.obj");
+        std::fs::write(
+            &p,
+            "mtllib p.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl scalars\nf 1 2 3\n\
+             usemtl maps\nf 1 2 3\nusemtl rough_only\nf 1 2 3\nusemtl plain\nf 1 2 3\n",
+        )
+        .unwrap();
+        let s = Scene::load(&p).unwrap();
+        assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+        let m = s.material_of_mesh(0);
+        assert_eq!((m.roughness, m.metallic), (0.3, 1.0), "Pr beats Ns");
+        let sheen = m.layers.sheen.expect("Ps gives a sheen");
+        assert_eq!(sheen.color, Vec3::splat(0.2));
+        let coat = m.layers.clearcoat.expect("Pc gives a coat");
+        assert_eq!(
+            (coat.factor, coat.roughness),
+            (0.5, 0.1),
+            "Pc is 4x Blender's coat weight"
+        );
+        assert_eq!(
+            m.specular, 0.5,
+            "Ks 0.25 is Blender's IOR level 0.25: half the plain F0"
+        );
+        assert_eq!(
+            s.material_of_mesh(1).specular,
+            1.0,
+            "no Ks: the plain dielectric"
+        );
+        let aniso = m.layers.anisotropy.expect("aniso gives anisotropy");
+        assert_eq!(aniso.strength, 0.4);
+        assert!((aniso.rotation - std::f32::consts::FRAC_PI_2).abs() < 1e-6);
+        let maps = s.material_of_mesh(1);
+        assert_eq!(
+            (maps.roughness, maps.metallic),
+            (1.0, 1.0),
+            "maps replace the scalars"
+        );
+        let t = &s.textures[maps.metallic_roughness_tex.unwrap().texture as usize];
+        assert!(!t.srgb);
+        assert_eq!((t.width, t.height), (2, 1));
+        assert_eq!(t.pixels, vec![[0, 51, 255, 255], [0, 204, 255, 255]]);
+        let rough_only = s.material_of_mesh(2);
+        assert_eq!((rough_only.roughness, rough_only.metallic), (1.0, 0.25));
+        let t = &s.textures[rough_only.metallic_roughness_tex.unwrap().texture as usize];
+        assert_eq!(t.pixels[1], [0, 204, 255, 255], "no map_Pm: B = 1 keeps Pm");
+        let plain = s.material_of_mesh(3);
+        assert!(plain.layers.sheen.is_none() && plain.layers.clearcoat.is_none());
+        assert!(plain.metallic_roughness_tex.is_none() && plain.metallic == 0.0);
     }
 }
