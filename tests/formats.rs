@@ -1,4 +1,4 @@
-//! What glTF files may use beyond the basics, checked on renders: quantized attributes against their
+//! What glTF and OBJ files may use beyond the basics, checked on renders and loads: quantized attributes against their
 //! float originals, vertex colours, texture coordinate sets other than 0.
 
 mod common;
@@ -333,4 +333,26 @@ fn a_z_up_file_turned_up_renders_as_its_y_up_twin() {
     let (d_turned, d_unturned) = (rel_mad(&reference, &turned), rel_mad(&reference, &unturned));
     assert!(d_turned < 1e-3, "turned Z-up file differs by {d_turned}");
     assert!(d_unturned > 0.05, "unturned differs by only {d_unturned}");
+}
+
+#[test]
+fn blender_pbr_obj_reads_as_blender_reads_it() {
+    // Blender 5.0.1's importer gives these Principled values for the file its exporter wrote.
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/obj_pbr/blender_pbr.obj");
+    let s = Scene::load(&path).unwrap();
+    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+    let by_name = |n: &str| s.materials.iter().find(|m| m.name == n).unwrap();
+    let c = by_name("coated");
+    assert_eq!((c.roughness, c.metallic, c.specular), (0.3, 1.0, 0.5));
+    assert_eq!(c.layers.sheen.unwrap().color, glam::Vec3::splat(0.2));
+    let coat = c.layers.clearcoat.unwrap();
+    assert_eq!((coat.factor, coat.roughness), (0.5, 0.1));
+    let aniso = c.layers.anisotropy.unwrap();
+    assert_eq!(aniso.strength, 0.4);
+    assert!((aniso.rotation - std::f32::consts::FRAC_PI_2).abs() < 1e-6);
+    let t = by_name("textured");
+    assert_eq!((t.roughness, t.metallic, t.specular), (1.0, 0.0, 1.0));
+    let tex = &s.textures[t.metallic_roughness_tex.unwrap().texture as usize];
+    assert_eq!(tex.pixels, vec![[0, 51, 255, 255], [0, 204, 255, 255]]);
+    assert!(t.layers.clearcoat.is_none() && t.layers.sheen.is_none());
 }
