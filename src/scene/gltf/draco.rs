@@ -42,6 +42,7 @@ fn label(mesh: &json::Mesh, mi: usize, pi: usize) -> String {
 pub(super) fn decode_primitives(
     doc: gltf::Document,
     buffers: &mut Vec<Vec<u8>>,
+    warnings: &mut Vec<String>,
 ) -> Result<gltf::Document, DracoError> {
     let compressed = doc
         .meshes()
@@ -65,8 +66,22 @@ pub(super) fn decode_primitives(
                 at: at.clone(),
                 problem: format!("invalid extension object: {e}"),
             })?;
-            decode_primitive(&mut root, buffers, (mi, pi), &ext)
-                .map_err(|problem| DracoError { at, problem })?;
+            let reordered =
+                decode_primitive(&mut root, buffers, (mi, pi), &ext).map_err(|problem| {
+                    DracoError {
+                        at: at.clone(),
+                        problem,
+                    }
+                })?;
+            let has_targets = root.meshes[mi].primitives[pi]
+                .targets
+                .as_ref()
+                .is_some_and(|t| !t.is_empty());
+            if reordered && has_targets {
+                warnings.push(format!(
+                    "{at}: the Draco stream is edgebreaker-coded, which reorders vertices, but the morph targets are not in it; they may not line up"
+                ));
+            }
         }
     }
     // Only accessors, views, buffers and primitives changed; each new view fits its buffer exactly.
@@ -227,7 +242,7 @@ fn decode_primitive(
     buffers: &mut Vec<Vec<u8>>,
     (mi, pi): (usize, usize),
     ext: &Compressed,
-) -> Result<(), String> {
+) -> Result<bool, String> {
     let prim = root.meshes[mi].primitives[pi].clone();
     let mapped = mapped_attributes(root, &prim, ext)?;
     let indices = match prim.indices {
@@ -241,6 +256,9 @@ fn decode_primitive(
         max_points: mapped.iter().map(|m| m.4).max().unwrap_or(0),
     };
     let stream = view_bytes(root, buffers, ext.buffer_view)?;
+    // Header: "DRACO", version major and minor, encoder type, method (0 sequential, which keeps
+    // the vertex order; 1 edgebreaker, which does not).
+    let reorders = stream.get(8) == Some(&1);
     let mesh = glint_draco::decode(stream, limits).map_err(|e| e.to_string())?;
     let mut fresh = Vec::with_capacity(mapped.len());
     for (semantic, name, id, a, count) in mapped {
@@ -267,7 +285,7 @@ fn decode_primitive(
         prim.attributes.insert(semantic, index);
     }
     prim.indices = Some(indices);
-    Ok(())
+    Ok(reorders)
 }
 
 /// The decoded values of Draco attribute `id` in the layout of fallback accessor `a` (`count`

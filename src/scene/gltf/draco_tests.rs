@@ -26,7 +26,7 @@ fn decode(json: &Value, bin: &[u8]) -> Result<gltf::Document, String> {
     let root: gltf::json::Root = serde_json::from_value(json.clone()).unwrap();
     let doc = gltf::Document::from_json_without_validation(root);
     let mut buffers = vec![bin.to_vec()];
-    super::decode_primitives(doc, &mut buffers).map_err(|e| e.to_string())
+    super::decode_primitives(doc, &mut buffers, &mut Vec::new()).map_err(|e| e.to_string())
 }
 
 #[test]
@@ -143,4 +143,33 @@ fn wrong_attribute_ids_and_lying_counts_are_errors() {
         assert!(e.contains(want), "{e} (wanted {want})");
         assert!(e.contains("mesh 0 ('Mesh') primitive 0"), "{e}");
     }
+}
+
+#[test]
+fn morph_targets_outside_an_edgebreaker_stream_are_a_warning() {
+    // The Box is edgebreaker-coded; give it a morph target of 24 zero displacements.
+    let (mut json, bin) = box_files();
+    let zeros = format!("data:application/octet-stream;base64,{}", "A".repeat(384));
+    json["buffers"]
+        .as_array_mut()
+        .unwrap()
+        .push(serde_json::json!({"byteLength": 288, "uri": zeros}));
+    json["bufferViews"]
+        .as_array_mut()
+        .unwrap()
+        .push(serde_json::json!({"buffer": 1, "byteLength": 288}));
+    json["accessors"].as_array_mut().unwrap().push(
+        serde_json::json!({"bufferView": 1, "componentType": 5126, "count": 24, "type": "VEC3"}),
+    );
+    json["meshes"][0]["primitives"][0]["targets"] = serde_json::json!([{"POSITION": 3}]);
+    let dir = tempfile::tempdir().unwrap();
+    let scene = Scene::load(&write(&dir, &json, &bin)).unwrap();
+    assert!(
+        scene
+            .warnings
+            .iter()
+            .any(|w| w.contains("edgebreaker") && w.contains("mesh 0")),
+        "{:?}",
+        scene.warnings
+    );
 }

@@ -105,14 +105,19 @@ fn load_inner(path: &Path, bytes: &[u8], animation: usize) -> Result<Scene, Gltf
     let (doc, required) = document(&json_bytes)?;
     let mut buffers = accessor::read_buffers(&doc, base, blob)?;
     let doc = meshopt::decode_views(doc, &mut buffers)?;
+    #[cfg_attr(not(feature = "draco"), allow(unused_mut))]
+    let mut decode_warnings = Vec::new();
     #[cfg(feature = "draco")]
-    let doc = draco::decode_primitives(doc, &mut buffers)?;
+    let doc = draco::decode_primitives(doc, &mut buffers, &mut decode_warnings)?;
     let buffers = buffers::Buffers::new(buffers);
     Loader {
         doc: &doc,
         buffers: &buffers,
         base,
-        scene: Scene::default(),
+        scene: Scene {
+            warnings: decode_warnings,
+            ..Scene::default()
+        },
         prims: HashMap::new(),
         textures: HashMap::new(),
         gloss_textures: HashMap::new(),
