@@ -261,7 +261,14 @@ fn interpolation_test_animations_sample_as_the_spec_says() {
     let (doc, buffers, _) = gltf::import(&path).unwrap();
     let mut checked = 0;
     for anim in doc.animations() {
-        let scene = Scene::load_with_animation(&path, anim.index()).unwrap();
+        let scene = Scene::load_with(
+            &path,
+            &glint::scene::LoadOptions {
+                animation: anim.index(),
+                ..Default::default()
+            },
+        )
+        .unwrap();
         let a = scene.animation.as_ref().expect("animation kept");
         for ch in anim.channels() {
             let reader = ch.reader(|b| Some(&buffers[b.index()]));

@@ -356,3 +356,29 @@ fn blender_pbr_obj_reads_as_blender_reads_it() {
     assert_eq!(tex.pixels, vec![[0, 51, 255, 255], [0, 204, 255, 255]]);
     assert!(t.layers.clearcoat.is_none() && t.layers.sheen.is_none());
 }
+
+#[test]
+fn multiple_scenes_loads_each_scene() {
+    use glint::scene::{LoadOptions, SceneChoice};
+    let Some(shared) = common::shared_assets() else {
+        return;
+    };
+    let path = shared.join("gltf/MultipleScenes/glTF/MultipleScenes.gltf");
+    let triangles = |i: usize| {
+        let opts = LoadOptions {
+            scene: SceneChoice::Index(i),
+            ..Default::default()
+        };
+        Scene::load_with(&path, &opts).unwrap().triangle_count()
+    };
+    // Scene 0 is a triangle, scene 1 a square (the model's README).
+    assert_eq!((triangles(0), triangles(1)), (1, 2));
+    assert!(Scene::load_with(
+        &path,
+        &LoadOptions {
+            scene: SceneChoice::Index(2),
+            ..Default::default()
+        }
+    )
+    .is_err());
+}

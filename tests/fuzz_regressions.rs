@@ -61,7 +61,7 @@ fn draco_streams_declaring_more_texcoord_orientations_than_corners_are_refused()
     ] {
         let data = std::fs::read(dir.join(name)).unwrap();
         let file = harness::draco_glb(&data).unwrap();
-        let e = glint::scene::gltf::load_bytes(Path::new(name), &file, 0)
+        let e = glint::scene::gltf::load_bytes(Path::new(name), &file, &Default::default())
             .err()
             .unwrap_or_else(|| panic!("{name} loaded"))
             .to_string();

@@ -9,7 +9,7 @@ use crate::film::aov::FeatureImages;
 use crate::film::denoise::{DenoiseError, DenoiseQuality, Denoiser};
 use crate::film::{Display, Image, ViewTransform};
 use crate::render::job::{DefaultLights, LensOptions, Overrides, Time};
-use crate::scene::{GgxScattering, Layering, UpAxis};
+use crate::scene::{GgxScattering, Layering, SceneChoice, UpAxis};
 
 /// What `render` and `turntable` share: image size, sampling, backend, seed, lights, exposure,
 /// threads. Those a scene file may set are `Option`s: given or not, the job decides (the command
@@ -61,6 +61,10 @@ pub struct Args {
     /// points up in the image.
     #[arg(long, value_enum, default_value_t = UpAxis::Y)]
     pub model_up: UpAxis,
+    /// Which scene of a glTF file that has several: its index or name (`glint info` lists them)
+    /// [default: the file's default scene]
+    #[arg(long, value_name = "N|NAME")]
+    pub scene: Option<SceneChoice>,
     /// How the dielectric specular layer weights the diffuse under it: the glTF spec's fresnel_mix
     /// or Blender-style albedo scaling [default: spec]
     #[arg(long, value_enum)]

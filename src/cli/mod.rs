@@ -14,7 +14,7 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
-use crate::scene::{animation, Scene};
+use crate::scene::{animation, LoadOptions, Scene};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -76,8 +76,8 @@ pub fn run(cli: Cli) -> Result<()> {
 
 /// Loads a model posed at the start of its first animation (skins and morphs included), printing the
 /// loader's warnings.
-fn load(path: &std::path::Path) -> Result<Scene> {
-    let mut scene = Scene::load(path)?;
+fn load(path: &std::path::Path, opts: &LoadOptions) -> Result<Scene> {
+    let mut scene = Scene::load_with(path, opts)?;
     for w in &scene.warnings {
         eprintln!("warning: {}: {w}", path.display());
     }
@@ -86,7 +86,7 @@ fn load(path: &std::path::Path) -> Result<Scene> {
 }
 
 fn info_command(input: &std::path::Path) -> Result<()> {
-    let scene = load(input)?;
+    let scene = load(input, &LoadOptions::default())?;
     let s = &scene.stats;
     let mut text = format!(
         "{}\n  nodes       {}\n  meshes      {} ({} primitives)\n  triangles   {}\n  materials   {}\n  \
@@ -112,6 +112,13 @@ fn info_command(input: &std::path::Path) -> Result<()> {
         );
     }
     text += &extensions_text(s);
+    if s.scenes.len() > 1 {
+        text += &format!(
+            "  scenes      {} (--scene N|NAME): {}\n",
+            s.scenes.len(),
+            s.scenes.join(", ")
+        );
+    }
     if !scene.variants.is_empty() {
         text += &format!(
             "  variants    {} (--variant NAME)\n",

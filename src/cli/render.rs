@@ -155,6 +155,7 @@ impl RenderArgs {
             time: self.time.options(),
             variant: self.common.variant.clone(),
             up_axis: self.common.model_up,
+            scene: self.common.scene.clone().unwrap_or_default(),
         }
     }
 }

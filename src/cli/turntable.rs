@@ -11,7 +11,7 @@ use super::args::{Args, DenoiseArgs};
 use super::{load, progress_bar};
 use crate::film::Format;
 use crate::render::job::{self, Basics, CameraChoice, JobOptions, Overrides, Setup, View};
-use crate::scene::defaults;
+use crate::scene::{defaults, LoadOptions};
 use crate::turntable::{
     self, FrameNames, LightMode, Motion, Orbit, Shard, Turntable, DEFAULT_ELEVATION_DEG,
 };
@@ -231,7 +231,13 @@ fn write_previews(args: &TurntableArgs, names: &FrameNames) -> Result<()> {
 
 fn render_frames(args: &TurntableArgs, plan: &Plan) -> Result<()> {
     let t0 = Instant::now();
-    let scene = load(&args.input)?;
+    let scene = load(
+        &args.input,
+        &LoadOptions {
+            scene: args.common.scene.clone().unwrap_or_default(),
+            ..Default::default()
+        },
+    )?;
     let load_s = t0.elapsed().as_secs_f64();
     let basics = &plan.basics;
     // The orbit frames the scene as the job will turn it.

@@ -16,7 +16,9 @@ pub use view::{CameraChoice, CameraRef, Environment, LensOptions, View};
 use super::{render_full, RenderOutput, RenderSettings};
 use crate::accel::{self, Accel, AccelError, Backend};
 use crate::scene::features::Features;
-use crate::scene::{animation, defaults, Camera, Light, LoadError, Scene, UpAxis};
+use crate::scene::{
+    animation, defaults, Camera, Light, LoadError, LoadOptions, Scene, SceneChoice, UpAxis,
+};
 
 #[derive(Debug, thiserror::Error)]
 pub enum JobError {
@@ -114,6 +116,8 @@ pub struct JobOptions {
     pub variant: Option<String>,
     /// The axis the file calls up; the scene is turned so that it becomes +Y.
     pub up_axis: UpAxis,
+    /// Which of a glTF file's scenes to load (read when the job loads the file).
+    pub scene: SceneChoice,
 }
 
 impl JobOptions {
@@ -150,7 +154,13 @@ impl Setup {
     ) -> Result<Setup, JobError> {
         let t = Instant::now();
         let environment = opts.environment_light()?;
-        let scene = Scene::load_with_animation(path, opts.time.animation)?;
+        let scene = Scene::load_with(
+            path,
+            &LoadOptions {
+                scene: opts.scene.clone(),
+                animation: opts.time.animation,
+            },
+        )?;
         scene.warnings.iter().for_each(|w| warn(w));
         Self::assemble(scene, environment, opts, t)
     }

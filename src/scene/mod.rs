@@ -14,6 +14,7 @@ pub mod gltf;
 pub mod ktx2;
 pub mod layers;
 pub mod limits;
+pub mod load_options;
 pub mod mesh;
 pub mod obj;
 mod quiet_panic;
@@ -34,6 +35,7 @@ pub use animation::Animation;
 pub use envmap::EnvMap;
 pub use error::LoadError;
 pub use layers::MaterialLayers;
+pub use load_options::{LoadOptions, SceneChoice};
 pub use mesh::{Mesh, VertexAttrs};
 pub use shading::{GgxScattering, Layering, ShadingModel};
 pub use texture::{Texture, Wrap};
@@ -502,6 +504,8 @@ pub struct SceneStats {
     /// The file's `extensionsUsed` and `extensionsRequired` (glTF files only).
     pub extensions_used: Vec<String>,
     pub extensions_required: Vec<String>,
+    /// A glTF file's scenes by index and name (`--scene` chooses one).
+    pub scenes: Vec<String>,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -533,12 +537,12 @@ impl Scene {
     /// Loads a .gltf, .glb, .obj or .toml (scene) file, chosen by extension (with a glTF file's first
     /// animation).
     pub fn load(path: &Path) -> Result<Scene, LoadError> {
-        Self::load_with_animation(path, 0)
+        Self::load_with(path, &LoadOptions::default())
     }
 
-    /// Loads a file keeping animation `animation` of a glTF file (an error when it has animations but
-    /// not that one).
-    pub fn load_with_animation(path: &Path, animation: usize) -> Result<Scene, LoadError> {
+    /// Loads a file keeping the scene and animation `opts` choose of a glTF file (an error when the
+    /// file lacks that one; for other files, any scene but the default is an error).
+    pub fn load_with(path: &Path, opts: &LoadOptions) -> Result<Scene, LoadError> {
         let ext = path
             .extension()
             .and_then(|e| e.to_str())
@@ -548,7 +552,16 @@ impl Scene {
             return Err(LoadError::new(path, "no such file"));
         }
         let mut scene = match ext.as_str() {
-            "gltf" | "glb" => gltf::load(path, animation)?,
+            "gltf" | "glb" => gltf::load(path, opts)?,
+            _ if opts.scene != SceneChoice::Default => {
+                return Err(LoadError::new(
+                    path,
+                    format!(
+                        "{} asked for, but only glTF files hold several scenes",
+                        opts.scene
+                    ),
+                ))
+            }
             "obj" => obj::load(path)?,
             "toml" => desc::load(path)?,
             _ => {

@@ -51,14 +51,18 @@ fn assets() -> PathBuf {
 
 /// A .gltf (JSON, with data-URI buffers and images).
 pub fn gltf(data: &[u8]) {
-    if let Ok(scene) = glint::scene::gltf::load_bytes(&nowhere("input.gltf"), data, 0) {
+    if let Ok(scene) =
+        glint::scene::gltf::load_bytes(&nowhere("input.gltf"), data, &Default::default())
+    {
         exercise(scene);
     }
 }
 
 /// A .glb (header, JSON and BIN chunks, embedded images, meshopt views).
 pub fn glb(data: &[u8]) {
-    if let Ok(scene) = glint::scene::gltf::load_bytes(&nowhere("input.glb"), data, 0) {
+    if let Ok(scene) =
+        glint::scene::gltf::load_bytes(&nowhere("input.glb"), data, &Default::default())
+    {
         exercise(scene);
     }
 }

@@ -43,6 +43,8 @@ pub enum GltfError {
     },
     #[error("{at}: no sampler {sampler} in the animation")]
     PointerSampler { at: String, sampler: usize },
+    #[error("no {asked} (the file's scenes: {})", if .names.is_empty() { "none".to_string() } else { .names.join(", ") })]
+    NoScene { asked: String, names: Vec<String> },
     #[error("no animation {index} (the file has {count})")]
     NoAnimation { index: usize, count: usize },
     #[error("{what} has {len} elements but POSITION has {vertices}")]

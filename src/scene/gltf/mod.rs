@@ -35,7 +35,7 @@ pub use error::GltfError;
 #[cfg(test)]
 pub(crate) use material::uv_transform;
 
-use super::{Camera, Instance, LoadError, Scene};
+use super::{Camera, Instance, LoadError, LoadOptions, Scene, SceneChoice};
 
 /// Extensions glint implements: a file may require them, and using any other draws a warning.
 const SUPPORTED: &[&str] = &[
@@ -73,18 +73,18 @@ type MorphTarget = (Vec<Vec3>, Vec<Vec3>);
 /// Per-vertex joints and weights of a skinned mesh.
 type SkinAttrs = (Vec<[u16; 4]>, Vec<Vec4>);
 
-/// Loads a .gltf or .glb file keeping its animation number `animation` (when it has animations).
-/// Never panics on malformed input: every problem is a `LoadError`.
-pub fn load(path: &Path, animation: usize) -> Result<Scene, LoadError> {
+/// Loads a .gltf or .glb file keeping the scene and animation `opts` choose. Never panics on
+/// malformed input: every problem is a `LoadError`.
+pub fn load(path: &Path, opts: &LoadOptions) -> Result<Scene, LoadError> {
     let bytes =
         std::fs::read(path).map_err(|e| LoadError::new(path, GltfError::Read(e).to_string()))?;
-    load_bytes(path, &bytes, animation)
+    load_bytes(path, &bytes, opts)
 }
 
 /// Loads a .gltf or .glb file whose bytes are in hand; `path` names it in errors, and relative URIs
 /// (external buffers and images) resolve beside it.
-pub fn load_bytes(path: &Path, bytes: &[u8], animation: usize) -> Result<Scene, LoadError> {
-    match super::quiet_panic::catch(|| load_inner(path, bytes, animation)) {
+pub fn load_bytes(path: &Path, bytes: &[u8], opts: &LoadOptions) -> Result<Scene, LoadError> {
+    match super::quiet_panic::catch(|| load_inner(path, bytes, opts)) {
         Some(r) => r.map_err(|e| LoadError::new(path, e.to_string())),
         None => Err(LoadError::new(
             path,
@@ -93,7 +93,7 @@ pub fn load_bytes(path: &Path, bytes: &[u8], animation: usize) -> Result<Scene, 
     }
 }
 
-fn load_inner(path: &Path, bytes: &[u8], animation: usize) -> Result<Scene, GltfError> {
+fn load_inner(path: &Path, bytes: &[u8], opts: &LoadOptions) -> Result<Scene, GltfError> {
     let base = path.parent().unwrap_or_else(|| Path::new("."));
     let (json_bytes, blob) = if bytes.starts_with(b"glTF") {
         accessor::split_glb(bytes)?
@@ -124,12 +124,23 @@ fn load_inner(path: &Path, bytes: &[u8], animation: usize) -> Result<Scene, Gltf
         images: HashMap::new(),
         default_material: None,
         dropped: 0,
-        animation,
+        animation: opts.animation,
+        scene_choice: &opts.scene,
         skin_attrs: HashMap::new(),
         morph_attrs: HashMap::new(),
         pointers,
     }
     .run(required)
+}
+
+/// Each scene of the file by index and name, for errors and `glint info`.
+pub(super) fn scene_names(doc: &gltf::Document) -> Vec<String> {
+    doc.scenes()
+        .map(|s| match s.name() {
+            Some(n) => format!("{} '{n}'", s.index()),
+            None => s.index().to_string(),
+        })
+        .collect()
 }
 
 /// The validated document of a JSON chunk, its required extensions checked against glint's (and
@@ -197,6 +208,8 @@ struct Loader<'a> {
     dropped: usize,
     /// Which animation to keep.
     animation: usize,
+    /// Which scene's nodes to place.
+    scene_choice: &'a SceneChoice,
     /// Joints and weights of skinned scene meshes, by mesh index.
     skin_attrs: HashMap<u32, SkinAttrs>,
     /// Morph targets of scene meshes, by mesh index.
@@ -239,6 +252,7 @@ impl Loader<'_> {
     fn run(mut self, required: Vec<String>) -> Result<Scene, GltfError> {
         let doc = self.doc;
         self.scene.stats.extensions_required = required;
+        self.scene.stats.scenes = scene_names(doc);
         self.scene.variants.names = variants::names(doc);
         for ext in doc.extensions_used() {
             if !SUPPORTED.contains(&ext) {
@@ -277,11 +291,26 @@ impl Loader<'_> {
         Ok(self.scene)
     }
 
-    /// The roots of the hierarchy: the default scene's, else scene 0's, else every node that is
-    /// nobody's child.
-    fn roots(&self) -> Vec<usize> {
+    /// The roots of the hierarchy: the chosen scene's; by default the default scene's, else scene
+    /// 0's, else every node that is nobody's child.
+    fn roots(&self) -> Result<Vec<usize>, GltfError> {
         let doc = self.doc;
-        match doc.default_scene().or_else(|| doc.scenes().next()) {
+        let chosen = match self.scene_choice {
+            SceneChoice::Default => doc.default_scene().or_else(|| doc.scenes().next()),
+            SceneChoice::Index(i) => Some(doc.scenes().nth(*i).ok_or(GltfError::NoScene {
+                asked: self.scene_choice.to_string(),
+                names: scene_names(doc),
+            })?),
+            SceneChoice::Name(n) => {
+                Some(doc.scenes().find(|s| s.name() == Some(n.as_str())).ok_or(
+                    GltfError::NoScene {
+                        asked: self.scene_choice.to_string(),
+                        names: scene_names(doc),
+                    },
+                )?)
+            }
+        };
+        Ok(match chosen {
             Some(s) => s.nodes().map(|n| n.index()).collect(),
             None => {
                 let mut is_child = vec![false; doc.nodes().len()];
@@ -292,7 +321,7 @@ impl Loader<'_> {
                 }
                 (0..is_child.len()).filter(|&i| !is_child[i]).collect()
             }
-        }
+        })
     }
 
     /// Walks the hierarchy depth first from the roots, placing each node's meshes, light and camera
@@ -305,7 +334,7 @@ impl Loader<'_> {
             ..Placed::default()
         };
         let mut stack: Vec<(usize, Mat4)> = self
-            .roots()
+            .roots()?
             .iter()
             .rev()
             .map(|&r| (r, Mat4::IDENTITY))

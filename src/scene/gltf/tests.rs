@@ -923,3 +923,41 @@ fn animation_pointer_with_a_bad_sampler_or_type_is_an_error() {
         s.warnings
     );
 }
+
+#[test]
+fn scenes_are_chosen_by_index_or_name_and_default_to_the_files() {
+    use crate::scene::{LoadOptions, SceneChoice};
+    let dir = tempfile::tempdir().unwrap();
+    let p = write(
+        &dir,
+        &TRI,
+        &[],
+        r#""nodes": [{"mesh": 0}, {"mesh": 0, "translation": [5, 0, 0]}],
+  "scenes": [{"name": "left", "nodes": [0]}, {"name": "right", "nodes": [1]}],
+  "scene": 1"#,
+    );
+    let x_of = |scene: SceneChoice| {
+        let s = Scene::load_with(
+            &p,
+            &LoadOptions {
+                scene,
+                ..Default::default()
+            },
+        )
+        .map_err(|e| e.to_string())?;
+        assert_eq!(s.instances.len(), 1);
+        assert_eq!(s.stats.scenes, vec!["0 'left'", "1 'right'"]);
+        Ok::<f32, String>(s.bounds().min.x)
+    };
+    assert_eq!(
+        x_of(SceneChoice::Default),
+        Ok(5.0),
+        "the file's default scene"
+    );
+    assert_eq!(x_of(SceneChoice::Index(0)), Ok(0.0));
+    assert_eq!(x_of(SceneChoice::Name("right".into())), Ok(5.0));
+    let e = x_of(SceneChoice::Index(2)).unwrap_err();
+    assert!(e.contains("no scene 2") && e.contains("1 'right'"), "{e}");
+    let e = x_of(SceneChoice::Name("middle".into())).unwrap_err();
+    assert!(e.contains("no scene 'middle'"), "{e}");
+}
