@@ -53,6 +53,17 @@ mod imp {
             // SAFETY: SSE2 baseline; `__m128i` and `[i32; 4]` have the same size.
             unsafe { std::mem::transmute::<__m128i, [i32; 4]>(_mm_cvttps_epi32(self.0)) }
         }
+        #[inline(always)]
+        pub fn sqrt(self) -> Self {
+            // SAFETY: SSE baseline; _mm_sqrt_ps is the correctly rounded IEEE square root.
+            Self(unsafe { _mm_sqrt_ps(self.0) })
+        }
+        /// The magnitude (the sign bit cleared).
+        #[inline(always)]
+        pub fn abs(self) -> Self {
+            // SAFETY: SSE baseline.
+            Self(unsafe { _mm_andnot_ps(_mm_set1_ps(-0.0), self.0) })
+        }
         lanewise! {
             min -> F4 = _mm_min_ps;
             max -> F4 = _mm_max_ps;
@@ -79,6 +90,12 @@ mod imp {
         pub fn bits(self) -> u32 {
             // SAFETY: SSE baseline.
             unsafe { _mm_movemask_ps(self.0) as u32 }
+        }
+        /// `a` where true, `b` elsewhere.
+        #[inline(always)]
+        pub fn select(self, a: F4, b: F4) -> F4 {
+            // SAFETY: SSE baseline (and, andnot, or: SSE4.1's blend is not in the baseline).
+            F4(unsafe { _mm_or_ps(_mm_and_ps(self.0, a.0), _mm_andnot_ps(self.0, b.0)) })
         }
     }
 
@@ -125,6 +142,14 @@ mod imp {
         #[inline(always)]
         pub fn to_i32(self) -> [i32; 4] {
             self.0.map(|x| x as i32)
+        }
+        #[inline(always)]
+        pub fn sqrt(self) -> Self {
+            Self(self.0.map(f32::sqrt))
+        }
+        #[inline(always)]
+        pub fn abs(self) -> Self {
+            Self(self.0.map(f32::abs))
         }
         #[inline(always)]
         fn zip(self, o: Self, f: impl Fn(f32, f32) -> f32) -> Self {
@@ -177,6 +202,13 @@ mod imp {
         pub fn bits(self) -> u32 {
             (0..4).fold(0, |b, l| b | (self.0[l] as u32) << l)
         }
+        #[inline(always)]
+        pub fn select(self, a: super::F4, b: super::F4) -> super::F4 {
+            let (a, b) = (a.to_array(), b.to_array());
+            super::F4::load(&std::array::from_fn(
+                |l| if self.0[l] { a[l] } else { b[l] },
+            ))
+        }
     }
 
     macro_rules! binop {
@@ -196,7 +228,7 @@ mod imp {
     binop!(Div, div, /);
 }
 
-pub use imp::F4;
+pub use imp::{F4, M4};
 
 #[cfg(test)]
 mod tests {
@@ -213,5 +245,19 @@ mod tests {
         assert!(mn[3].is_nan() && mx[3].is_nan());
         assert_eq!(a.le(b).bits(), 0b0010);
         assert_eq!(a.gt(b).bits(), 0b0100);
+    }
+
+    #[test]
+    fn sqrt_abs_and_select_are_the_scalar_ones_lane_by_lane() {
+        let a = F4::load(&[4.0, -2.5, 0.0, 1e-30]);
+        let b = F4::load(&[9.0, 7.0, -0.0, 3.0]);
+        assert_eq!(
+            b.abs().sqrt().to_array(),
+            [3.0, 7.0f32.sqrt(), 0.0, 3.0f32.sqrt()]
+        );
+        assert_eq!(a.abs().to_array(), [4.0, 2.5, 0.0, 1e-30]);
+        assert!(a.sqrt().to_array()[1].is_nan());
+        assert_eq!(a.lt(b).select(a, b).to_array(), [4.0, -2.5, -0.0, 1e-30]);
+        assert_eq!(a.gt(b).select(a, b).to_array(), [9.0, 7.0, -0.0, 3.0]);
     }
 }

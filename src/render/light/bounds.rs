@@ -9,6 +9,7 @@ use std::f32::consts::PI;
 
 use glam::Vec3;
 
+use crate::geometry::f4::{F4, M4};
 use crate::geometry::Aabb;
 
 /// A cone of directions about unit `w`: every direction within angle acos(`cos_theta`) of it.
@@ -169,8 +170,9 @@ pub(super) struct PackedBounds {
 impl PackedBounds {
     /// `LightBounds::importance`. The angles bound from the box's bounding sphere: theta_b, half
     /// the angle it subtends from `p`, widens both the emitter cone and the receiver's cosine, so
-    /// the bound holds for every point of the box.
-    #[inline(always)]
+    /// the bound holds for every point of the box. The scalar form of `Bounds4::importance`, which
+    /// the tree uses; kept as the readable reference the vector form is tested against.
+    #[cfg(test)]
     pub fn importance(&self, p: Vec3, n: Vec3) -> f32 {
         let to = p - self.centre;
         let d2 = to.length_squared();
@@ -210,6 +212,94 @@ impl PackedBounds {
     }
 }
 
+/// Four `PackedBounds` lane by lane, for a wide node's children: `importance` evaluates all four
+/// at once with the same formula (an empty lane has no power and a zero importance everywhere).
+#[derive(Clone, Copy)]
+pub(super) struct Bounds4 {
+    centre: [F4; 3],
+    radius: F4,
+    w: [F4; 3],
+    phi: F4,
+    cos_o: F4,
+    sin_o: F4,
+    cos_e: F4,
+    two_sided: M4,
+}
+
+impl Bounds4 {
+    /// Up to four bounds; lanes past the last are empty.
+    pub fn new(lanes: &[PackedBounds]) -> Self {
+        assert!(lanes.len() <= 4, "a wide node has at most four children");
+        // An empty lane: no power, and an emission cone no direction is inside (cos_e above 1).
+        let empty = PackedBounds {
+            centre: Vec3::ZERO,
+            radius: 0.0,
+            w: Vec3::Z,
+            phi: 0.0,
+            cos_o: 1.0,
+            sin_o: 0.0,
+            cos_e: 2.0,
+            two_sided: false,
+        };
+        let lane = |l: usize| lanes.get(l).unwrap_or(&empty);
+        let f = |g: &dyn Fn(&PackedBounds) -> f32| F4::load(&std::array::from_fn(|l| g(lane(l))));
+        let two: [f32; 4] = std::array::from_fn(|l| if lane(l).two_sided { 1.0 } else { 0.0 });
+        Self {
+            centre: [f(&|b| b.centre.x), f(&|b| b.centre.y), f(&|b| b.centre.z)],
+            radius: f(&|b| b.radius),
+            w: [f(&|b| b.w.x), f(&|b| b.w.y), f(&|b| b.w.z)],
+            phi: f(&|b| b.phi),
+            cos_o: f(&|b| b.cos_o),
+            sin_o: f(&|b| b.sin_o),
+            cos_e: f(&|b| b.cos_e),
+            two_sided: F4::load(&two).gt(F4::splat(0.5)),
+        }
+    }
+
+    /// `PackedBounds::importance` of the four lanes, step for step (the same IEEE operations, so
+    /// a lane equals the scalar bound but for the order of a dot product's sums).
+    #[inline(always)]
+    pub fn importance(&self, p: Vec3, n: Vec3) -> [f32; 4] {
+        let (zero, one) = (F4::splat(0.0), F4::splat(1.0));
+        let safe_sqrt = |x: F4| x.max(zero).sqrt();
+        let cos_sub = |sin_a: F4, cos_a: F4, sin_b: F4, cos_b: F4| {
+            cos_a.gt(cos_b).select(one, cos_a * cos_b + sin_a * sin_b)
+        };
+        let sin_sub = |sin_a: F4, cos_a: F4, sin_b: F4, cos_b: F4| {
+            cos_a.gt(cos_b).select(zero, sin_a * cos_b - cos_a * sin_b)
+        };
+        let to = [
+            F4::splat(p.x) - self.centre[0],
+            F4::splat(p.y) - self.centre[1],
+            F4::splat(p.z) - self.centre[2],
+        ];
+        let d2 = to[0] * to[0] + to[1] * to[1] + to[2] * to[2];
+        let inv_d = d2.gt(zero).select(one / d2.sqrt(), zero);
+        let wi = [to[0] * inv_d, to[1] * inv_d, to[2] * inv_d];
+        let cos_w = self.w[0] * wi[0] + self.w[1] * wi[1] + self.w[2] * wi[2];
+        let cos_w = self.two_sided.select(cos_w.abs(), cos_w);
+        let sin_w = safe_sqrt(one - cos_w * cos_w);
+        let inside = d2.lt(self.radius * self.radius);
+        let sin_b = inside.select(zero, (self.radius * inv_d).min(one));
+        let cos_b = inside.select(F4::splat(-1.0), safe_sqrt(one - sin_b * sin_b));
+        let cos_x = cos_sub(sin_w, cos_w, self.sin_o, self.cos_o);
+        let sin_x = sin_sub(sin_w, cos_w, self.sin_o, self.cos_o);
+        let cos_p = cos_sub(sin_x, cos_x, sin_b, cos_b);
+        let mut importance = self.phi * cos_p / d2.max(self.radius);
+        if n != Vec3::ZERO {
+            let cos_i =
+                (wi[0] * F4::splat(n.x) + wi[1] * F4::splat(n.y) + wi[2] * F4::splat(n.z)).abs();
+            let sin_i = safe_sqrt(one - cos_i * cos_i);
+            importance = importance * cos_sub(sin_i, cos_i, sin_b, cos_b);
+        }
+        // `max` keeps 0 where the bound is NaN; `gt` is false there too.
+        cos_p
+            .gt(self.cos_e)
+            .select(importance.max(zero), zero)
+            .to_array()
+    }
+}
+
 fn safe_sqrt(x: f32) -> f32 {
     x.max(0.0).sqrt()
 }
@@ -232,6 +322,7 @@ fn safe_asin(x: f32) -> f32 {
 }
 
 /// cos(max(0, a - b)) from the sines and cosines of a and b in [0, pi].
+#[cfg(test)]
 fn cos_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> f32 {
     if cos_a > cos_b {
         return 1.0;
@@ -240,6 +331,7 @@ fn cos_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> f32 {
 }
 
 /// sin(max(0, a - b)) from the sines and cosines of a and b in [0, pi].
+#[cfg(test)]
 fn sin_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> f32 {
     if cos_a > cos_b {
         return 0.0;
@@ -344,5 +436,48 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn four_wide_importance_is_the_scalar_one_lane_by_lane() {
+        let mut worst = 0.0f32;
+        for k in 0..3000u64 {
+            let lanes: Vec<PackedBounds> = (0..(1 + k % 4))
+                .map(|j| {
+                    let c = direction(9 * k + j) * (0.5 + 2.0 * unit(5 * k + j));
+                    let mut b = square(c, direction(11 * k + j));
+                    b.two_sided = (k + j) % 3 == 0;
+                    b.cos_theta_e = 1.0 - unit(13 * k + j);
+                    b.normals.cos_theta = 1.0 - 2.0 * unit(17 * k + j);
+                    b.phi = 0.1 + unit(19 * k + j);
+                    b.packed()
+                })
+                .collect();
+            // Points near, inside and far from the bounds; receivers with and without a normal.
+            let p = direction(23 * k) * (0.05 + 3.0 * unit(29 * k));
+            let n = if k % 2 == 0 {
+                Vec3::ZERO
+            } else {
+                direction(31 * k)
+            };
+            let wide = Bounds4::new(&lanes).importance(p, n);
+            for (l, b) in lanes.iter().enumerate() {
+                let scalar = b.importance(p, n);
+                let err = (wide[l] - scalar).abs() / scalar.abs().max(1e-6);
+                // Only the dot products' sums are ordered differently.
+                assert!(err < 1e-4, "lane {l}: {} vs {scalar}", wide[l]);
+                assert_eq!(
+                    wide[l] > 0.0,
+                    scalar > 0.0,
+                    "lane {l}: {} vs {scalar}",
+                    wide[l]
+                );
+                worst = worst.max(err);
+            }
+            for &w in &wide[lanes.len()..] {
+                assert_eq!(w, 0.0, "an empty lane");
+            }
+        }
+        assert!(worst < 1e-4, "{worst}");
     }
 }
