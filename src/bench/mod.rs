@@ -4,6 +4,7 @@
 //! Each measures on identical inputs and reports ratios from one run, since machines are noisy.
 
 pub mod convergence;
+pub mod denoise;
 pub mod error;
 pub mod fastfail;
 pub mod features;

@@ -51,6 +51,25 @@ pub enum BenchCommand {
     /// What skipping unused features saves: a static, pinhole, opaque scene rendered as derived and
     /// with motion, lens and thin-wall machinery forced on (the same image; 320 x 240 unless told).
     Features(FeaturesArgs),
+    /// What denoising one render costs: the colour alone and guided by albedo and normal, at each
+    /// quality of the network and of the guides' cleaning (1280 x 720 unless told).
+    Denoise(DenoiseArgs),
+}
+
+#[derive(clap::Args, Debug)]
+pub struct DenoiseArgs {
+    /// A .gltf, .glb, .obj or .toml file, or `icosphere:N`.
+    pub input: Input,
+    #[command(flatten)]
+    pub size: Size<1280, 720>,
+    #[arg(long, default_value_t = 4)]
+    pub spp: u32,
+    /// Denoiser threads (0: all cores).
+    #[arg(long, default_value_t = 0)]
+    pub threads: usize,
+    /// Timed repetitions per variant (the best is reported).
+    #[arg(long, default_value_t = 3)]
+    pub repeat: usize,
 }
 
 #[derive(clap::Args, Debug)]
@@ -167,6 +186,7 @@ pub fn run(cmd: BenchCommand) -> Result<()> {
         BenchCommand::Convergence(a) => convergence(a),
         BenchCommand::FastFailure(a) => fast_failure(a),
         BenchCommand::Features(a) => features(a),
+        BenchCommand::Denoise(a) => denoise(a),
         BenchCommand::Rays(a) => rays(a),
     }
 }
@@ -230,6 +250,23 @@ fn features(a: FeaturesArgs) -> Result<()> {
     super::print_out(&features::table(&a.input, &f, &rows))
 }
 
+fn denoise(a: DenoiseArgs) -> Result<()> {
+    use crate::bench::denoise;
+    let basics = Basics {
+        width: a.size.width().clamp(1, 8192),
+        height: a.size.height().clamp(1, 8192),
+        spp: a.spp.clamp(1, 1 << 16),
+        ..Basics::default()
+    };
+    let opts = JobOptions {
+        defaults: basics,
+        flags: Overrides::all(basics),
+        ..JobOptions::default()
+    };
+    let (settings, rows) = denoise::run(&a.input, &opts, a.threads, a.repeat)?;
+    super::print_out(&denoise::table(&a.input, &settings, a.threads, &rows))
+}
+
 fn rays(a: RaysArgs) -> Result<()> {
     let config = RaysConfig {
         backends: if a.backend.is_empty() {
@@ -277,6 +314,7 @@ mod tests {
             super::BenchCommand::Convergence(a) => (a.size.width(), a.size.height()),
             super::BenchCommand::FastFailure(a) => (a.size.width(), a.size.height()),
             super::BenchCommand::Features(a) => (a.size.width(), a.size.height()),
+            super::BenchCommand::Denoise(a) => (a.size.width(), a.size.height()),
         };
         // Parsed in an order that once let the first default evaluated win everywhere.
         assert_eq!(size(bench(&["rays", "x.glb"])), (1024, 768));
@@ -289,5 +327,6 @@ mod tests {
             size(bench(&["features", "x.glb", "--width", "7"])),
             (7, 240)
         );
+        assert_eq!(size(bench(&["denoise", "x.glb"])), (1280, 720));
     }
 }

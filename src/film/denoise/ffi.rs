@@ -110,7 +110,7 @@ fn execute(
 /// The denoised RGB (3 floats a pixel) of `color`, guided by the prefiltered `guides` if given.
 pub(super) fn run(
     device: Device,
-    quality: DenoiseQuality,
+    (quality, prefilter): (DenoiseQuality, DenoiseQuality),
     color: &Image,
     guides: Option<Guides>,
 ) -> Result<Vec<f32>, DenoiseError> {
@@ -128,7 +128,7 @@ pub(super) fn run(
     // Each guide cleaned by an RT filter of its own, in place, then trusted as noise-free.
     for (name, buf) in [(c"albedo", &mut albedo), (c"normal", &mut normal)] {
         let p = buf.as_mut_ptr();
-        execute(device, size, &[(name, p), (c"output", p)], &[], quality)?;
+        execute(device, size, &[(name, p), (c"output", p)], &[], prefilter)?;
     }
     let images = [
         (c"color", rgb.as_mut_ptr()),
