@@ -62,8 +62,9 @@ pub struct RenderArgs {
     #[arg(long, value_enum)]
     pub sampler: Option<SamplerKind>,
     /// How light samples choose among the lights: by power, or through the light BVH (by a bound
-    /// on what each light sends the shading point; less noise among many lights, more time).
-    #[arg(long, value_enum, default_value_t = LightSampler::Power)]
+    /// on what each light sends the shading point; less noise among many lights); auto takes the
+    /// BVH from 32 lights on (emissive triangles count one each)
+    #[arg(long, value_enum, default_value_t = LightSampler::Auto)]
     pub light_sampler: LightSampler,
     /// Pixel reconstruction filter [default: gaussian]
     #[arg(long, value_enum)]

@@ -124,7 +124,7 @@ impl Default for RenderSettings {
             frame_time: 0.0,
             sample_shard: None,
             feature_images: false,
-            light_sampler: LightSampler::Power,
+            light_sampler: LightSampler::Auto,
         }
     }
 }

@@ -246,6 +246,59 @@ fn many_lights_irradiance_sums_their_closed_forms_by_power_and_by_bvh() {
     }
 }
 
+#[test]
+fn punctual_lights_irradiance_sums_their_closed_forms_by_power_and_by_bvh() {
+    // Points above and below the plane, and spots: aimed at the origin (inside their inner cone),
+    // aimed away (outside their outer cone), aimed at it from below the plane.
+    let mut lights = Vec::new();
+    let mut expected = 0.0f64;
+    for k in 0..10 {
+        let position = Vec3::new(
+            -2.0 + 0.45 * k as f32,
+            if k == 3 { -1.0 } else { 0.3 + 0.35 * k as f32 },
+            1.2 - 0.27 * k as f32,
+        );
+        let intensity = 0.5 + 0.4 * k as f32;
+        let to_origin = -position.normalize();
+        let cos = (-to_origin.y).max(0.0) as f64;
+        let lit = position.length_squared() as f64;
+        let light = match k % 3 {
+            0 => {
+                expected += intensity as f64 * cos / lit;
+                Light::Point {
+                    position,
+                    intensity: Vec3::splat(intensity),
+                }
+            }
+            1 => {
+                expected += intensity as f64 * cos / lit;
+                Light::Spot {
+                    position,
+                    direction: to_origin,
+                    intensity: Vec3::splat(intensity),
+                    cos_inner: 0.9,
+                    cos_outer: 0.8,
+                }
+            }
+            _ => Light::Spot {
+                position,
+                direction: -to_origin,
+                intensity: Vec3::splat(intensity),
+                cos_inner: 0.9,
+                cos_outer: 0.8,
+            },
+        };
+        lights.push(light);
+    }
+    for sampler in [LightSampler::Power, LightSampler::Bvh] {
+        let light = irradiance_by(lights.clone(), sampler)[0];
+        assert!(
+            (light - expected).abs() <= 0.01 * expected,
+            "{sampler}: {light}, expected {expected}"
+        );
+    }
+}
+
 /// A 32 x 16 map: dark below the horizon, a sky gradient above, a small bright sun.
 fn sky_map() -> EnvMap {
     let (w, h) = (32, 16);
@@ -457,4 +510,27 @@ fn emissive_triangle_irradiance_matches_lambert_near_and_far() {
             );
         }
     }
+}
+
+#[test]
+fn auto_takes_the_bvh_from_its_light_count_on() {
+    let points = |n: usize| {
+        (0..n)
+            .map(|k| Light::Point {
+                position: Vec3::new(k as f32, 1.0, 0.0),
+                intensity: Vec3::ONE,
+            })
+            .collect::<Vec<_>>()
+    };
+    assert!(
+        !lights_only(points(AUTO_BVH_LIGHTS - 1), LightSampler::Auto)
+            .1
+            .uses_bvh()
+    );
+    assert!(lights_only(points(AUTO_BVH_LIGHTS), LightSampler::Auto)
+        .1
+        .uses_bvh());
+    assert!(!lights_only(points(AUTO_BVH_LIGHTS), LightSampler::Power)
+        .1
+        .uses_bvh());
 }
