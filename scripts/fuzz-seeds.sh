@@ -91,6 +91,38 @@ for f in sorted(glob.glob(os.path.join(sys.argv[1], "*/glTF-Draco/*.gltf"))):
             name = "%s-%d-%d" % (os.path.basename(f)[:-5], mi, pi)
             open(os.path.join(sys.argv[2], name), "wb").write(head + data[o:o + v["byteLength"]])
 PY
+# KHR_animation_pointer: a triangle whose material, light, camera and node are animated by pointers
+# (and one pointer at what glint does not animate).
+python3 - "$c/gltf_load" <<'PY'
+import base64, json, struct, sys
+f = [0, 0, 0, 1, 0, 0, 0, 1, 0] + [0, 1] + [1, 0, 0, 1, 0, 0, 1, 1] + [0, 4] + [0.5, 1.5] + [0, 0, 0, 0, 2, 0]
+data = struct.pack("<%df" % len(f), *f)
+acc = [(0, 3, "VEC3"), (36, 2, "SCALAR"), (44, 2, "VEC4"), (76, 2, "SCALAR"), (84, 2, "SCALAR"), (92, 2, "VEC3")]
+ptr = lambda s, p: {"sampler": s, "target": {"path": "pointer", "extensions": {"KHR_animation_pointer": {"pointer": p}}}}
+doc = {
+    "asset": {"version": "2.0"},
+    "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_animation_pointer"],
+    "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "color": [1, 0.5, 0.25], "intensity": 10}]}},
+    "buffers": [{"byteLength": len(data), "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+    "bufferViews": [{"buffer": 0, "byteLength": len(data)}],
+    "accessors": [{"bufferView": 0, "byteOffset": o, "componentType": 5126, "count": n, "type": t} for o, n, t in acc],
+    "materials": [{"emissiveFactor": [1, 1, 1], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 2}}}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
+    "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}}],
+    "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0, 0, 5]}, {"extensions": {"KHR_lights_punctual": {"light": 0}}}],
+    "scenes": [{"nodes": [0, 1, 2]}, {"name": "second", "nodes": [0]}],
+    "animations": [{"channels": [
+        ptr(0, "/materials/0/pbrMetallicRoughness/baseColorFactor"),
+        ptr(1, "/materials/0/extensions/KHR_materials_emissive_strength/emissiveStrength"),
+        ptr(1, "/extensions/KHR_lights_punctual/lights/0/intensity"),
+        ptr(2, "/cameras/0/perspective/yfov"),
+        ptr(3, "/nodes/2/translation"),
+        ptr(1, "/nodes/0/weights"),
+        ptr(1, "/materials/0/occlusionTexture/strength")],
+        "samplers": [{"input": 1, "output": 2}, {"input": 1, "output": 3}, {"input": 1, "output": 4}, {"input": 1, "output": 5}]}],
+}
+open(sys.argv[1] + "/animation-pointer.gltf", "w").write(json.dumps(doc))
+PY
 # What was found before (and fixed) seeds its target too.
 for d in "$root"/fuzz/regressions/*/; do cp "$d"* "$c/$(basename "$d")/" 2>/dev/null || true; done
 for t in "$c"/*; do echo "$(basename "$t"): $(ls "$t" | wc -l) seeds, $(du -sk "$t" | cut -f1) KiB"; done
