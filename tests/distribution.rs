@@ -10,7 +10,7 @@ use glint::accel::Backend;
 use glint::film::filter::FilterKind;
 use glint::film::Image;
 use glint::render::RenderSettings;
-use glint::scene::animation::{self, Channel, Interpolation, Node, Property};
+use glint::scene::animation::{self, Channel, Curve, Interpolation, Node, Property};
 use glint::scene::{Animation, Camera, Instance, Lens, Material, Mesh, Scene};
 
 const SIZE: usize = 96;
@@ -123,12 +123,14 @@ fn moving_square(side: f32, depth: f32, speed: f32, shutter: f32) -> Scene {
         channels: vec![Channel {
             node: 0,
             property: Property::Translation,
-            interpolation: Interpolation::Linear,
-            times: vec![0.0, 10.0],
-            values: vec![
-                start.extend(0.0),
-                (start + Vec3::X * speed * 10.0).extend(0.0),
-            ],
+            curve: Curve {
+                interpolation: Interpolation::Linear,
+                times: vec![0.0, 10.0],
+                values: vec![
+                    start.extend(0.0),
+                    (start + Vec3::X * speed * 10.0).extend(0.0),
+                ],
+            },
         }],
         instances: vec![(0, 0)],
         ..Default::default()

@@ -269,38 +269,24 @@ fn hundred_thousand_instances_load_and_build() {
 
 /// An asymmetric OBJ (a tall post on a wide slab, Y up), its vertices mapped by `f`.
 fn post_and_slab(f: impl Fn([f32; 3]) -> [f32; 3]) -> String {
+    use glam::Vec3;
+    use glint::scene::generate::box_mesh;
     let boxes = [
-        ([-1.0, 0.0, -0.6], [1.0, 0.2, 0.6]),
-        ([0.3, 0.2, -0.15], [0.6, 1.5, 0.15]),
+        box_mesh(Vec3::new(-1.0, 0.0, -0.6), Vec3::new(1.0, 0.2, 0.6)),
+        box_mesh(Vec3::new(0.3, 0.2, -0.15), Vec3::new(0.6, 1.5, 0.15)),
     ];
     let mut obj = String::new();
-    for (k, (lo, hi)) in boxes.iter().enumerate() {
-        for c in 0..8 {
-            let p = [
-                if c & 1 == 0 { lo[0] } else { hi[0] },
-                if c & 2 == 0 { lo[1] } else { hi[1] },
-                if c & 4 == 0 { lo[2] } else { hi[2] },
-            ];
-            let q = f(p);
-            obj += &format!("v {} {} {}\n", q[0], q[1], q[2]);
+    let mut first = 1;
+    for m in &boxes {
+        for p in &m.positions {
+            let [x, y, z] = f(p.to_array());
+            obj += &format!("v {x} {y} {z}\n");
         }
-        let o = 8 * k + 1;
-        for face in [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ] {
-            obj += &format!(
-                "f {} {} {} {}\n",
-                face[0] + o,
-                face[1] + o,
-                face[2] + o,
-                face[3] + o
-            );
+        for t in &m.indices {
+            let [a, b, c] = t.map(|k| k + first);
+            obj += &format!("f {a} {b} {c}\n");
         }
+        first += m.positions.len() as u32;
     }
     obj
 }

@@ -7,10 +7,11 @@ use std::time::Instant;
 
 use indicatif::ProgressBar;
 
+use super::error::BenchError;
 use super::input::Input;
-use crate::film::denoise::{DenoiseError, DenoiseQuality, Denoiser};
+use crate::film::denoise::{DenoiseQuality, Denoiser};
 use crate::film::Image;
-use crate::render::job::{JobError, JobOptions, RenderJob};
+use crate::render::job::{JobOptions, RenderJob};
 use crate::render::RenderSettings;
 
 /// One way of denoising.
@@ -60,14 +61,6 @@ pub struct Row {
     pub difference: f64,
 }
 
-#[derive(Debug, thiserror::Error)]
-pub enum DenoiseBenchError {
-    #[error(transparent)]
-    Job(#[from] JobError),
-    #[error(transparent)]
-    Denoise(#[from] DenoiseError),
-}
-
 /// Renders the scene once with feature images, then denoises it `repeat` times per variant on a
 /// device of `threads` threads (0: all).
 pub fn run(
@@ -75,8 +68,8 @@ pub fn run(
     opts: &JobOptions,
     threads: usize,
     repeat: usize,
-) -> Result<(RenderSettings, Vec<Row>), DenoiseBenchError> {
-    let scene = input.load().map_err(JobError::from)?;
+) -> Result<(RenderSettings, Vec<Row>), BenchError> {
+    let scene = input.load()?;
     let job = RenderJob::prepare(scene, opts)?;
     let settings = RenderSettings {
         feature_images: true,

@@ -7,33 +7,8 @@
 
 use glam::{Mat4, Vec3, Vec4};
 
-use super::animation::{interpolate, Animation, Interpolation};
+use super::animation::{Animation, Curve};
 use super::{AlphaMode, Light, Projection, Scene};
-
-/// Keyed values of one property: `width` components in each `Vec4` (the rest zero).
-#[derive(Clone, Debug)]
-pub struct Curve {
-    pub interpolation: Interpolation,
-    pub times: Vec<f32>,
-    pub values: Vec<Vec4>,
-}
-
-impl Curve {
-    /// The curve at time `t`, clamped to the first and last keys; components interpolate linearly.
-    pub fn sample(&self, t: f32) -> Vec4 {
-        interpolate(
-            &self.times,
-            self.interpolation,
-            t,
-            |k, part| self.values[k * self.interpolation.per_key() + part],
-            |a: Vec4, b: Vec4, s| a.lerp(b, s),
-        )
-    }
-
-    pub fn last_time(&self) -> f32 {
-        self.times.last().copied().unwrap_or(0.0)
-    }
-}
 
 /// A material factor glint renders, by its glTF name.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

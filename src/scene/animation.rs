@@ -24,42 +24,65 @@ pub enum Property {
     Scale,
 }
 
-/// One animated property of one node: key times (seconds, increasing) and values (xyz or a
-/// quaternion's xyzw; three per key for cubic splines).
+/// Keyed values of one property: key times (seconds, increasing) and values (three per key for
+/// cubic splines), each in a `Vec4` (xyz, a quaternion's xyzw, or a factor in x, the rest zero).
 #[derive(Clone, Debug)]
-pub struct Channel {
-    pub node: u32,
-    pub property: Property,
+pub struct Curve {
     pub interpolation: Interpolation,
     pub times: Vec<f32>,
     pub values: Vec<Vec4>,
 }
 
-impl Channel {
-    /// The channel's value at time `t` (clamped to the first and last keys, as glTF says).
-    pub fn sample(&self, t: f32) -> Vec4 {
-        let rotation = self.property == Property::Rotation;
-        let v = interpolate(
+impl Curve {
+    /// The curve at time `t` (clamped to the first and last keys, as glTF says), between keys by
+    /// `lerp`.
+    fn sample_by(&self, t: f32, lerp: impl Fn(Vec4, Vec4, f32) -> Vec4) -> Vec4 {
+        interpolate(
             &self.times,
             self.interpolation,
             t,
             |k, part| self.values[k * self.interpolation.per_key() + part],
-            |a: Vec4, b: Vec4, s| {
-                if rotation {
-                    Vec4::from(
-                        Quat::from_vec4(a)
-                            .normalize()
-                            .slerp(Quat::from_vec4(b).normalize(), s),
-                    )
-                } else {
-                    a.lerp(b, s)
-                }
-            },
-        );
-        if rotation {
-            Vec4::from(Quat::from_vec4(v).normalize())
+            lerp,
+        )
+    }
+
+    /// The curve at time `t`, components interpolated linearly.
+    pub fn sample(&self, t: f32) -> Vec4 {
+        self.sample_by(t, |a, b, s| a.lerp(b, s))
+    }
+
+    /// The curve of a rotation at time `t`: a unit quaternion, spherically interpolated.
+    pub fn sample_rotation(&self, t: f32) -> Vec4 {
+        let v = self.sample_by(t, |a, b, s| {
+            Vec4::from(
+                Quat::from_vec4(a)
+                    .normalize()
+                    .slerp(Quat::from_vec4(b).normalize(), s),
+            )
+        });
+        Vec4::from(Quat::from_vec4(v).normalize())
+    }
+
+    pub fn last_time(&self) -> f32 {
+        self.times.last().copied().unwrap_or(0.0)
+    }
+}
+
+/// One animated property of one node.
+#[derive(Clone, Debug)]
+pub struct Channel {
+    pub node: u32,
+    pub property: Property,
+    pub curve: Curve,
+}
+
+impl Channel {
+    /// The channel's value at time `t`.
+    pub fn sample(&self, t: f32) -> Vec4 {
+        if self.property == Property::Rotation {
+            self.curve.sample_rotation(t)
         } else {
-            v
+            self.curve.sample(t)
         }
     }
 }
@@ -76,7 +99,7 @@ impl Interpolation {
 
 /// The glTF sampler formulas over keys at `times`: `part(k, p)` is element `p` of key `k` (0 for
 /// step and linear; 0 in-tangent, 1 value, 2 out-tangent for cubic splines). Clamped outside the keys.
-pub(super) fn interpolate<T>(
+fn interpolate<T>(
     times: &[f32],
     interpolation: Interpolation,
     t: f32,
@@ -321,7 +344,7 @@ impl Animation {
     pub fn duration(&self) -> f32 {
         self.channels
             .iter()
-            .filter_map(|c| c.times.last().copied())
+            .map(|c| c.curve.last_time())
             .chain(self.weights.iter().filter_map(|w| w.times.last().copied()))
             .fold(self.properties.duration(), f32::max)
     }
@@ -455,9 +478,11 @@ mod tests {
         Channel {
             node: 0,
             property,
-            interpolation,
-            times: vec![1.0, 3.0],
-            values,
+            curve: Curve {
+                interpolation,
+                times: vec![1.0, 3.0],
+                values,
+            },
         }
     }
 
@@ -546,9 +571,11 @@ mod tests {
             channels: vec![Channel {
                 node: 1,
                 property: Property::Translation,
-                interpolation: Interpolation::Linear,
-                times: vec![0.0, 1.0],
-                values: vec![Vec4::ZERO, Vec4::new(0.0, 2.0, 0.0, 0.0)],
+                curve: Curve {
+                    interpolation: Interpolation::Linear,
+                    times: vec![0.0, 1.0],
+                    values: vec![Vec4::ZERO, Vec4::new(0.0, 2.0, 0.0, 0.0)],
+                },
             }],
             ..Default::default()
         };

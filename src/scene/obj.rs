@@ -22,6 +22,7 @@ use std::path::{Path, PathBuf};
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
+use super::decode::Rgba8;
 use super::{AlphaMode, Instance, LoadError, Material, Mesh, Scene, TexRef, Texture, Wrap};
 
 /// Reads a file an OBJ names (an MTL library, a texture), given its full path.
@@ -399,30 +400,16 @@ fn metal_rough_texture(
     scene: &mut Scene,
     label: &str,
 ) -> Option<u32> {
-    let mut load = |key: &str| -> Option<super::decode::Rgba8> {
-        let spec = m.unknown_param.get(key)?;
-        let Some((file, bytes)) = resolve(spec, search, files) else {
-            scene.warnings.push(format!(
-                "{label}: texture '{}' not found; ignored",
-                spec.trim()
-            ));
-            return None;
-        };
-        super::decode::decode_rgba8(&bytes)
-            .map_err(|e| {
-                scene.warnings.push(format!(
-                    "{label}: cannot load texture '{}': {e}; ignored",
-                    file.display()
-                ))
-            })
-            .ok()
+    let mut load = |key: &str| {
+        let (file, bytes) = find(m.unknown_param.get(key)?, (search, files), scene, label)?;
+        decode(&file, &bytes, scene, label)
     };
     let (rough, metal) = (load("map_Pr"), load("map_Pm"));
     let (width, height) = [&rough, &metal]
         .iter()
         .filter_map(|i| i.as_ref().map(|i| (i.width, i.height)))
         .max_by_key(|&(w, h)| w * h)?;
-    let grey = |img: &Option<super::decode::Rgba8>, x: usize, y: usize| match img {
+    let grey = |img: &Option<Rgba8>, x: usize, y: usize| match img {
         Some(i) => i.pixels[(y * i.height / height) * i.width + x * i.width / width][0],
         None => 255,
     };
@@ -461,6 +448,35 @@ fn resolve(spec: &str, search: &[PathBuf], files: &Files) -> Option<(PathBuf, Ve
     None
 }
 
+/// The file an MTL statement names and its bytes; a warning naming it when it is not found.
+fn find(
+    spec: &str,
+    (search, files): (&[PathBuf], &Files),
+    scene: &mut Scene,
+    label: &str,
+) -> Option<(PathBuf, Vec<u8>)> {
+    let found = resolve(spec, search, files);
+    if found.is_none() {
+        scene.warnings.push(format!(
+            "{label}: texture '{}' not found; ignored",
+            spec.trim()
+        ));
+    }
+    found
+}
+
+/// A texture file decoded; a warning naming it when it cannot be.
+fn decode(file: &Path, bytes: &[u8], scene: &mut Scene, label: &str) -> Option<Rgba8> {
+    super::decode::decode_rgba8(bytes)
+        .map_err(|e| {
+            scene.warnings.push(format!(
+                "{label}: cannot load texture '{}': {e}; ignored",
+                file.display()
+            ))
+        })
+        .ok()
+}
+
 fn texture(
     spec: &str,
     srgb: bool,
@@ -469,40 +485,25 @@ fn texture(
     textures: &mut HashMap<(PathBuf, bool), Option<u32>>,
     label: &str,
 ) -> Option<u32> {
-    let Some((file, bytes)) = resolve(spec, search, files) else {
-        scene.warnings.push(format!(
-            "{label}: texture '{}' not found; ignored",
-            spec.trim()
-        ));
-        return None;
-    };
+    let (file, bytes) = find(spec, (search, files), scene, label)?;
     if let Some(t) = textures.get(&(file.clone(), srgb)) {
         return *t;
     }
-    let out = match super::decode::decode_rgba8(&bytes) {
-        Ok(img) => {
-            scene.textures.push(Texture {
-                name: file
-                    .file_name()
-                    .map(|f| f.to_string_lossy().into_owned())
-                    .unwrap_or_default(),
-                width: img.width,
-                height: img.height,
-                pixels: img.pixels,
-                srgb,
-                wrap_s: Wrap::Repeat,
-                wrap_t: Wrap::Repeat,
-            });
-            Some((scene.textures.len() - 1) as u32)
-        }
-        Err(e) => {
-            scene.warnings.push(format!(
-                "{label}: cannot load texture '{}': {e}; ignored",
-                file.display()
-            ));
-            None
-        }
-    };
+    let out = decode(&file, &bytes, scene, label).map(|img| {
+        scene.textures.push(Texture {
+            name: file
+                .file_name()
+                .map(|f| f.to_string_lossy().into_owned())
+                .unwrap_or_default(),
+            width: img.width,
+            height: img.height,
+            pixels: img.pixels,
+            srgb,
+            wrap_s: Wrap::Repeat,
+            wrap_t: Wrap::Repeat,
+        });
+        (scene.textures.len() - 1) as u32
+    });
     textures.insert((file, srgb), out);
     out
 }

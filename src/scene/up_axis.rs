@@ -1,7 +1,7 @@
 //! The axis a model file treats as up, and the turn of a loaded scene that makes it glint's +Y
 //! (Z-up scans and CAD exports): instances, their motion, lights and the file's cameras.
 
-use glam::{Mat4, Vec3};
+use glam::Mat4;
 
 use super::Scene;
 use crate::geometry::Motion;
@@ -24,15 +24,6 @@ impl UpAxis {
             UpAxis::X => Mat4::from_rotation_z(std::f32::consts::FRAC_PI_2),
             UpAxis::Y => Mat4::IDENTITY,
             UpAxis::Z => Mat4::from_rotation_x(-std::f32::consts::FRAC_PI_2),
-        }
-    }
-
-    /// The file's up axis as a vector of its own frame.
-    pub fn vector(self) -> Vec3 {
-        match self {
-            UpAxis::X => Vec3::X,
-            UpAxis::Y => Vec3::Y,
-            UpAxis::Z => Vec3::Z,
         }
     }
 }
@@ -70,12 +61,17 @@ impl Scene {
 mod tests {
     use super::*;
     use crate::scene::{Instance, Light};
+    use glam::Vec3;
 
     #[test]
     fn each_axis_turns_to_y_keeping_handedness() {
-        for up in [UpAxis::X, UpAxis::Y, UpAxis::Z] {
+        for (up, axis) in [
+            (UpAxis::X, Vec3::X),
+            (UpAxis::Y, Vec3::Y),
+            (UpAxis::Z, Vec3::Z),
+        ] {
             let r = up.to_y_up();
-            let y = r.transform_vector3(up.vector());
+            let y = r.transform_vector3(axis);
             assert!((y - Vec3::Y).length() < 1e-6, "{up:?}: {y}");
             assert!((r.determinant() - 1.0).abs() < 1e-6);
         }

@@ -302,13 +302,15 @@ pub(super) fn component(dt: DataType, b: &[u8], normalized: bool) -> f32 {
     }
 }
 
-/// Reads a float vector attribute of `N` components (any component type, normalised as declared).
+/// Reads a float attribute of `N` components (SCALAR for 1; any component type, normalised as
+/// declared).
 pub(super) fn read_vec<const N: usize>(
     acc: &gltf::Accessor,
     buffers: &Buffers,
     what: &str,
 ) -> Result<Vec<[f32; N]>, AccessorError> {
     let want = match N {
+        1 => Dimensions::Scalar,
         2 => Dimensions::Vec2,
         3 => Dimensions::Vec3,
         _ => Dimensions::Vec4,

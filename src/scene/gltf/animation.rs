@@ -7,8 +7,10 @@ use gltf::accessor::{DataType, Dimensions};
 use super::accessor::{component, read_elements, read_f32s, read_vec};
 use super::error::GltfError;
 use super::{Loader, Placed};
-use crate::scene::animated_properties::{AnimatedLight, Curve};
-use crate::scene::animation::{Channel, Interpolation, Morph, Node, Property, Skin, WeightChannel};
+use crate::scene::animated_properties::AnimatedLight;
+use crate::scene::animation::{
+    Channel, Curve, Interpolation, Morph, Node, Property, Skin, WeightChannel,
+};
 use crate::scene::Animation;
 
 pub(super) fn interpolation_of(i: gltf::animation::Interpolation) -> Interpolation {
@@ -119,6 +121,39 @@ impl Loader<'_> {
             times,
             values,
         }))
+    }
+
+    /// A sampler's keys as a curve of `width`-component values (1, 3 or 4; floats or normalized
+    /// integers), three elements a key for cubic splines, all finite.
+    pub(super) fn curve(
+        &self,
+        sampler: &gltf::animation::Sampler,
+        width: usize,
+    ) -> Result<Curve, GltfError> {
+        let interpolation = interpolation_of(sampler.interpolation());
+        let times = self.key_times(&sampler.input())?;
+        let output = sampler.output();
+        let values = match width {
+            1 => padded(read_vec::<1>(&output, self.buffers, "output")?),
+            3 => padded(read_vec::<3>(&output, self.buffers, "output")?),
+            _ => padded(read_vec::<4>(&output, self.buffers, "output")?),
+        };
+        let expected = interpolation.per_key() * times.len();
+        if values.len() != expected {
+            return Err(GltfError::OutputCount {
+                values: values.len(),
+                keys: times.len(),
+                expected,
+            });
+        }
+        if values.iter().any(|v| !v.is_finite()) {
+            return Err(GltfError::OutputNotFinite);
+        }
+        Ok(Curve {
+            interpolation,
+            times,
+            values,
+        })
     }
 
     /// Key times of a sampler input: float SCALAR, finite and increasing.
@@ -261,59 +296,29 @@ impl Loader<'_> {
                 }
             };
             let at = |e: GltfError| e.at(format!("{label}, channel {ci}"));
-            let sampler = ch.sampler();
-            let interpolation = interpolation_of(sampler.interpolation());
-            let times = self.key_times(&sampler.input()).map_err(at)?;
-            let output = sampler.output();
-            let values: Vec<Vec4> = match property {
-                Property::Rotation => read_vec::<4>(&output, self.buffers, "rotation output")
-                    .map_err(|e| at(e.into()))?
-                    .into_iter()
-                    .map(Vec4::from)
-                    .collect(),
-                _ => read_vec::<3>(&output, self.buffers, "output")
-                    .map_err(|e| at(e.into()))?
-                    .into_iter()
-                    .map(|v| Vec3::from(v).extend(0.0))
-                    .collect(),
-            };
-            let per_key = if interpolation == Interpolation::CubicSpline {
-                3
-            } else {
-                1
-            };
-            if values.len() != per_key * times.len() {
-                return Err(at(GltfError::OutputCount {
-                    values: values.len(),
-                    keys: times.len(),
-                    expected: per_key * times.len(),
-                }));
-            }
-            if values.iter().any(|v| !v.is_finite()) {
-                return Err(at(GltfError::OutputNotFinite));
-            }
-            if times.is_empty() {
+            let width = if property == Property::Rotation { 4 } else { 3 };
+            let curve = self.curve(&ch.sampler(), width).map_err(at)?;
+            if curve.times.is_empty() {
                 continue;
             }
             out.channels.push(Channel {
                 node: ch.target().node().index() as u32,
                 property,
-                interpolation,
-                times,
-                values,
+                curve,
             });
         }
         Ok(out)
     }
 }
 
-/// A node channel from a pointer's curve (rotations as quaternions xyzw, the rest xyz).
-pub(super) fn node_channel(node: u32, property: Property, curve: Curve) -> Channel {
-    Channel {
-        node,
-        property,
-        interpolation: curve.interpolation,
-        times: curve.times,
-        values: curve.values,
-    }
+/// `N`-component values in `Vec4`s, the rest zero.
+fn padded<const N: usize>(values: Vec<[f32; N]>) -> Vec<Vec4> {
+    values
+        .into_iter()
+        .map(|a| {
+            let mut v = Vec4::ZERO;
+            v.as_mut()[..N].copy_from_slice(&a);
+            v
+        })
+        .collect()
 }

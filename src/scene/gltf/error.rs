@@ -35,12 +35,6 @@ pub enum GltfError {
     /// A problem inside the element `at` (a primitive, a skin, an animation channel).
     #[error("{at}: {source}")]
     At { at: String, source: Box<GltfError> },
-    #[error("output accessor {accessor} is {found:?} but the pointer's property is {want:?}")]
-    PointerOutputType {
-        accessor: usize,
-        found: Dimensions,
-        want: Dimensions,
-    },
     #[error("{at}: no sampler {sampler} in the animation")]
     PointerSampler { at: String, sampler: usize },
     #[error("no {asked} (the file's scenes: {})", if .names.is_empty() { "none".to_string() } else { .names.join(", ") })]

@@ -7,14 +7,12 @@
 
 use std::borrow::Cow;
 
-use glam::{Vec3, Vec4};
-use gltf::accessor::Dimensions;
+use glam::Vec3;
 
-use super::accessor::{component, read_elements};
 use super::error::GltfError;
 use super::Loader;
-use crate::scene::animated_properties::{AnimatedMaterial, Curve, MaterialProperty};
-use crate::scene::animation::{Interpolation, Property};
+use crate::scene::animated_properties::{AnimatedMaterial, MaterialProperty};
+use crate::scene::animation::{Channel, Property};
 
 /// One pointer channel as the file gives it.
 #[derive(Clone, Debug, PartialEq)]
@@ -111,59 +109,7 @@ pub(super) fn extract(json: &[u8]) -> Result<(Cow<'_, [u8]>, Vec<PointerChannel>
     Ok((Cow::Owned(bytes), out))
 }
 
-/// A pointer channel's keys: times, and `width` components per key element.
-struct Keys {
-    interpolation: Interpolation,
-    times: Vec<f32>,
-    values: Vec<Vec4>,
-}
-
 impl Loader<'_> {
-    /// Reads a sampler's keys as `width`-component values (floats or normalized integers).
-    fn keys(&self, sampler: &gltf::animation::Sampler, width: usize) -> Result<Keys, GltfError> {
-        let interpolation = super::animation::interpolation_of(sampler.interpolation());
-        let times = self.key_times(&sampler.input())?;
-        let output = sampler.output();
-        let want = match width {
-            1 => Dimensions::Scalar,
-            2 => Dimensions::Vec2,
-            3 => Dimensions::Vec3,
-            _ => Dimensions::Vec4,
-        };
-        if output.dimensions() != want {
-            return Err(GltfError::PointerOutputType {
-                accessor: output.index(),
-                found: output.dimensions(),
-                want,
-            });
-        }
-        let (dt, norm) = (output.data_type(), output.normalized());
-        let cs = dt.size();
-        let values: Vec<Vec4> = read_elements(&output, self.buffers, |b| {
-            let mut v = Vec4::ZERO;
-            for k in 0..width {
-                v[k] = component(dt, &b[k * cs..], norm);
-            }
-            v
-        })?;
-        let expected = interpolation.per_key() * times.len();
-        if values.len() != expected {
-            return Err(GltfError::OutputCount {
-                values: values.len(),
-                keys: times.len(),
-                expected,
-            });
-        }
-        if values.iter().any(|v| !v.is_finite()) {
-            return Err(GltfError::OutputNotFinite);
-        }
-        Ok(Keys {
-            interpolation,
-            times,
-            values,
-        })
-    }
-
     /// Adds animation `anim`'s pointer channels to `out`: node ones as node channels, the rest as
     /// animated properties (lights and cameras through `placed`).
     pub(super) fn pointer_channels(
@@ -198,28 +144,25 @@ impl Loader<'_> {
                     sampler: ch.sampler,
                 });
             };
-            let keys = if let Target::Weights(node) = target {
+            if let Target::Weights(node) = target {
                 let w = self
                     .weight_channel(&sampler, node)
                     .map_err(|e| e.at(label.clone()))?;
                 out.weights.extend(w);
                 continue;
-            } else {
-                self.keys(&sampler, target.width())
-                    .map_err(|e| e.at(label.clone()))?
-            };
-            if keys.times.is_empty() {
+            }
+            let curve = self
+                .curve(&sampler, target.width())
+                .map_err(|e| e.at(label.clone()))?;
+            if curve.times.is_empty() {
                 continue;
             }
-            let curve = Curve {
-                interpolation: keys.interpolation,
-                times: keys.times,
-                values: keys.values,
-            };
             match target {
-                Target::Node(node, property) => out
-                    .channels
-                    .push(super::animation::node_channel(node, property, curve)),
+                Target::Node(node, property) => out.channels.push(Channel {
+                    node,
+                    property,
+                    curve,
+                }),
                 Target::Material(m, property) => {
                     material_entry(doc, out, m).curves.push((property, curve))
                 }
