@@ -150,8 +150,10 @@ impl Bvh {
     }
 
     /// Walks the tree front to back, keeping the closest accepted hit; with `any`, returns the first.
+    /// Hits name instance `base + ` the instance of their `TriId` (a mesh's BVH shared by its
+    /// instances holds instance 0, and each instance asks with its own index as `base`).
     #[inline(always)]
-    pub(super) fn query(&self, scene: &Scene, ray: &Ray, any: bool) -> Option<Hit> {
+    pub(super) fn query(&self, scene: &Scene, ray: &Ray, any: bool, base: u32) -> Option<Hit> {
         if self.nodes.is_empty() {
             return None;
         }
@@ -160,16 +162,16 @@ impl Bvh {
             // SAFETY: `avx` is set only where the CPU has AVX.
             return unsafe {
                 if any {
-                    self.walk_avx::<true>(scene, ray)
+                    self.walk_avx::<true>(scene, ray, base)
                 } else {
-                    self.walk_avx::<false>(scene, ray)
+                    self.walk_avx::<false>(scene, ray, base)
                 }
             };
         }
         if any {
-            self.walk::<true, SseSlabs>(scene, ray)
+            self.walk::<true, SseSlabs>(scene, ray, base)
         } else {
-            self.walk::<false, SseSlabs>(scene, ray)
+            self.walk::<false, SseSlabs>(scene, ray, base)
         }
     }
 
@@ -177,14 +179,14 @@ impl Bvh {
     /// an add on its own, so the hits are bit-identical to the SSE walk's.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx")]
-    unsafe fn walk_avx<const ANY: bool>(&self, scene: &Scene, ray: &Ray) -> Option<Hit> {
-        self.walk::<ANY, AvxSlabs>(scene, ray)
+    unsafe fn walk_avx<const ANY: bool>(&self, scene: &Scene, ray: &Ray, base: u32) -> Option<Hit> {
+        self.walk::<ANY, AvxSlabs>(scene, ray, base)
     }
 
     /// The walk proper. The nearest child hit goes on without a trip through the stack; the others
     /// are pushed farthest first (in lane order for `ANY`).
     #[inline(always)]
-    fn walk<const ANY: bool, S: Slabs>(&self, scene: &Scene, ray: &Ray) -> Option<Hit> {
+    fn walk<const ANY: bool, S: Slabs>(&self, scene: &Scene, ray: &Ray, base: u32) -> Option<Hit> {
         let any = ANY;
         let sh = RayShear::new(ray.d);
         let slabs = S::new(ray);
@@ -201,7 +203,7 @@ impl Bvh {
                 let first = child as usize;
                 for packet in first..first + (count as usize).div_ceil(4) {
                     let h = triangle::intersect4(ray.o, &sh, &self.tris[packet], ray.t_min, t_max);
-                    let ids = |lane| self.ids[4 * packet + lane];
+                    let ids = |lane: usize| self.ids[4 * packet + lane].rebased(base);
                     if take_lanes(any, &h, h.mask, ids, scene, ray, &mut t_max, &mut best) {
                         return best;
                     }
@@ -895,7 +897,7 @@ impl Triangles for Bvh {
 
     #[inline]
     fn traverse(&self, scene: &Scene, ray: &Ray, any: bool) -> Option<Hit> {
-        Self::query(self, scene, ray, any)
+        Self::query(self, scene, ray, any, 0)
     }
 
     fn memory_bytes(&self) -> usize {

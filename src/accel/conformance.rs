@@ -134,6 +134,68 @@ fn random_rays_match_brute_force() {
     assert!(hits > 1000, "test rays should hit often, hit {hits}");
 }
 
+/// A sphere placed many times (turned, scaled, overlapping) beside a ground quad, with the Rust
+/// backends tracing every shared mesh as instances: they, Embree and brute force agree, hits
+/// naming the right copy.
+#[test]
+fn many_copies_of_a_mesh_match_brute_force() {
+    let n = 32;
+    let mut instances = vec![Instance::new(0, Mat4::from_scale(Vec3::splat(30.0)))];
+    instances.extend((0..n).map(|k| {
+        let k = k as f32;
+        Instance::new(
+            1,
+            Mat4::from_translation(Vec3::new(k % 6.0 * 1.5, (k / 6.0).floor() * 1.5, 1.5))
+                * Mat4::from_rotation_z(0.3 * k)
+                * Mat4::from_scale(Vec3::new(1.0, 0.5 + 0.05 * k, 1.0)),
+        )
+    }));
+    let s = scene(
+        vec![generate::quad_grid(4), generate::icosphere(2, 0.1)],
+        instances,
+    );
+    let traced = super::instances::traced_as_instances(&s, 0);
+    assert_eq!(traced.iter().filter(|t| **t).count(), n);
+    let mut next = rng(0x51);
+    let rays: Vec<Ray> = (0..10_000)
+        .map(|_| {
+            let o = Vec3::new(next() * 12.0 - 2.0, next() * 12.0 - 2.0, 6.0 + next() * 4.0);
+            let d = Vec3::new(next() - 0.5, next() - 0.5, -1.0).normalize();
+            Ray::new(o, d)
+        })
+        .collect();
+    let mut cases: Vec<(String, Box<dyn Accel>)> = vec![
+        (
+            "bvh".into(),
+            Box::new(BvhAccel::build_limited(
+                s.clone(),
+                |_, t, i| Bvh::new(t, i),
+                0,
+            )),
+        ),
+        (
+            "grid".into(),
+            Box::new(GridAccel::build_limited(
+                s.clone(),
+                |_, t, i| super::grid::Grid::new(t, i, super::grid::DEFAULT_LAMBDA),
+                0,
+            )),
+        ),
+    ];
+    for b in Backend::all_available() {
+        cases.push((b.to_string(), super::build(s.clone(), b).unwrap()));
+    }
+    let brute = Brute(s.clone());
+    let hits = rays.iter().filter(|r| brute.intersect(r).is_some()).count();
+    assert!(hits > 5000, "test rays should hit often, hit {hits}");
+    for (name, a) in &cases {
+        let g = compare::compare(&s, a.as_ref(), &brute, &rays);
+        assert_eq!(g.mismatch_count, 0, "{name}: {:?}", g.mismatches);
+        assert_eq!(g.occlusion_mismatches, 0, "{name}");
+        assert!(g.grazing + g.edges <= rays.len() / 200, "{name}: {g:?}");
+    }
+}
+
 /// A 5k-triangle sphere of radius 0.01 in a room a thousand times larger (for the grid: cells much
 /// larger than the sphere's triangles, which all crowd into a few cells).
 #[test]

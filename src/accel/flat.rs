@@ -32,6 +32,15 @@ impl TriId {
         }
     }
 
+    /// This identity with `base` added to its instance (the alpha bit kept).
+    #[inline(always)]
+    pub fn rebased(self, base: u32) -> Self {
+        Self {
+            inst: self.inst.wrapping_add(base),
+            prim: self.prim,
+        }
+    }
+
     pub fn inst(self) -> u32 {
         self.inst & !ALPHA_BIT
     }
@@ -89,28 +98,63 @@ pub fn take_lanes(
     false
 }
 
-/// World-space vertices of every triangle of every static instance, and their identities, in instance
-/// order. Moving instances are left to `motion::MovingSet`.
-pub fn flatten(scene: &Scene) -> (Vec<[Vec3; 3]>, Vec<TriId>) {
+/// World-space vertices of every triangle of every instance not `skip`ped, and their identities,
+/// in instance order. Moving instances must be skipped (they have no single world position).
+pub fn flatten(scene: &Scene, skip: &[bool]) -> (Vec<[Vec3; 3]>, Vec<TriId>) {
     let mut tris = Vec::with_capacity(scene.triangle_count());
     let mut ids = Vec::with_capacity(tris.capacity());
-    for (i, inst) in scene.instances.iter().enumerate() {
-        if inst.motion.is_some() {
-            continue;
-        }
-        let mesh = &scene.meshes[inst.mesh as usize];
-        let alpha = scene.mesh_needs_alpha_test(inst.mesh);
-        let world: Vec<Vec3> = mesh
-            .positions
-            .par_iter()
-            .map(|&p| inst.to_world.transform_point3(p))
-            .collect();
-        tris.par_extend(
-            mesh.indices
+    let kept: Vec<u32> = (0..scene.instances.len() as u32)
+        .filter(|&i| !skip[i as usize])
+        .collect();
+    let mesh_of = |i: u32| &scene.meshes[scene.instances[i as usize].mesh as usize];
+    // A large mesh is spread over the threads vertex by vertex; a run of small ones instance by
+    // instance (a trip through the thread pool per 4-triangle instance made 100k of them take 2 s).
+    let large = |i: u32| mesh_of(i).indices.len() >= SPREAD_TRIANGLES;
+    let mut k = 0;
+    while k < kept.len() {
+        let end = if large(kept[k]) {
+            k + 1
+        } else {
+            k + kept[k..]
+                .iter()
+                .position(|&i| large(i))
+                .unwrap_or(kept.len() - k)
+        };
+        let run = &kept[k..end];
+        if large(kept[k]) {
+            let inst = &scene.instances[kept[k] as usize];
+            let mesh = mesh_of(kept[k]);
+            let world: Vec<Vec3> = mesh
+                .positions
                 .par_iter()
-                .map(|idx| idx.map(|k| world[k as usize])),
-        );
-        ids.extend((0..mesh.indices.len() as u32).map(|p| TriId::new(i as u32, p, alpha)));
+                .map(|&p| inst.to_world.transform_point3(p))
+                .collect();
+            tris.par_extend(
+                mesh.indices
+                    .par_iter()
+                    .map(|idx| idx.map(|v| world[v as usize])),
+            );
+        } else {
+            tris.par_extend(run.par_iter().flat_map_iter(|&i| {
+                let inst = &scene.instances[i as usize];
+                let mesh = mesh_of(i);
+                mesh.indices.iter().map(move |idx| {
+                    idx.map(|v| inst.to_world.transform_point3(mesh.positions[v as usize]))
+                })
+            }));
+        }
+        for &i in run {
+            debug_assert!(
+                scene.instances[i as usize].motion.is_none(),
+                "a moving instance cannot be flattened"
+            );
+            let alpha = scene.mesh_needs_alpha_test(scene.instances[i as usize].mesh);
+            ids.extend((0..mesh_of(i).indices.len() as u32).map(|p| TriId::new(i, p, alpha)));
+        }
+        k = end;
     }
     (tris, ids)
 }
+
+/// Meshes with at least this many triangles are flattened with all threads on the one mesh.
+const SPREAD_TRIANGLES: usize = 4096;

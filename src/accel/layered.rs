@@ -1,5 +1,6 @@
-//! The composition every Rust backend shares: a structure over the static instances' world-space
-//! triangles, then the moving instances (`motion::MovingSet`), then the CSG objects (`ObjectBvh`).
+//! The composition every Rust backend shares: a structure over the flattened instances' world-space
+//! triangles, then the instances traced in object space (`instances::InstanceSet`: moving ones and
+//! copies of meshes placed many times), then the CSG objects (`ObjectBvh`).
 //!
 //! Each later layer is asked with the closest hit so far as its limit, so the triangle structure's hot
 //! loop stays as it is. `Layered<S>` is generic over the structure (no `dyn`): every backend's walk is
@@ -10,7 +11,7 @@ use std::sync::Arc;
 use glam::Vec3;
 
 use super::flat::{flatten, TriId};
-use super::motion::MovingSet;
+use super::instances::{traced_as_instances, InstanceSet, FLATTEN_LIMIT};
 use super::objects::ObjectBvh;
 use super::Accel;
 use crate::geometry::{Hit, Ray, CSG_BIT};
@@ -40,19 +41,19 @@ pub trait Triangles: Send + Sync + Sized {
     fn memory_bytes(&self) -> usize;
 }
 
-/// A backend: static triangles in `S`, then moving instances, then CSG objects.
+/// A backend: flattened triangles in `S`, then instances traced in object space, then CSG objects.
 pub struct Layered<S> {
     scene: Arc<Scene>,
     statics: S,
-    /// Instances that move during the shutter (absent for static scenes).
-    moving: Option<Box<MovingSet>>,
+    /// Instances traced in object space (absent when every instance is flattened).
+    instances: Option<Box<InstanceSet>>,
     /// The scene's CSG objects, tested after the triangles.
     objects: ObjectBvh,
 }
 
 impl<S: Triangles> Layered<S> {
-    /// Builds over the scene's static instances (world space, `S::build`), its moving ones and its
-    /// CSG objects.
+    /// Builds over the scene's flattened instances (world space, `S::build`), the others and its CSG
+    /// objects.
     pub fn build(scene: Arc<Scene>) -> Self {
         Self::build_with(scene, S::build)
     }
@@ -62,26 +63,37 @@ impl<S: Triangles> Layered<S> {
         scene: Arc<Scene>,
         build: impl FnOnce(&Scene, Vec<[Vec3; 3]>, Vec<TriId>) -> S,
     ) -> Self {
-        let (tris, ids) = flatten(&scene);
+        Self::build_limited(scene, build, FLATTEN_LIMIT)
+    }
+
+    /// As `build_with`, flattening shared meshes only while their copies hold at most `limit`
+    /// triangles (`instances::traced_as_instances`).
+    pub fn build_limited(
+        scene: Arc<Scene>,
+        build: impl FnOnce(&Scene, Vec<[Vec3; 3]>, Vec<TriId>) -> S,
+        limit: usize,
+    ) -> Self {
+        let traced = traced_as_instances(&scene, limit);
+        let (tris, ids) = flatten(&scene, &traced);
         let statics = build(&scene, tris, ids);
         Self {
-            moving: MovingSet::build(&scene).map(Box::new),
+            instances: InstanceSet::build(&scene, &traced).map(Box::new),
             objects: ObjectBvh::build(&scene.csg),
             statics,
             scene,
         }
     }
 
-    /// The structure over the static triangles.
+    /// The structure over the flattened triangles.
     pub fn statics(&self) -> &S {
         &self.statics
     }
 
-    /// The static triangles, then the moving instances.
+    /// The flattened triangles, then the instances.
     #[inline]
     fn triangles_hit(&self, ray: &Ray) -> Option<Hit> {
         let hit = self.statics.intersect(&self.scene, ray);
-        match &self.moving {
+        match &self.instances {
             None => hit,
             Some(m) => m.intersect(&self.scene, ray, hit, false),
         }
@@ -111,13 +123,13 @@ impl<S: Triangles> Accel for Layered<S> {
         ray.is_valid()
             && (self.statics.occluded(&self.scene, ray)
                 || self
-                    .moving
+                    .instances
                     .as_ref()
                     .is_some_and(|m| m.intersect(&self.scene, ray, None, true).is_some())
                 || (!self.objects.is_empty() && self.objects.occluded(&self.scene.csg, ray)))
     }
 
     fn memory_bytes(&self) -> usize {
-        self.statics.memory_bytes() + self.moving.as_ref().map_or(0, |m| m.memory_bytes())
+        self.statics.memory_bytes() + self.instances.as_ref().map_or(0, |m| m.memory_bytes())
     }
 }

@@ -94,7 +94,9 @@ struct Tally {
 
 impl ObjectList {
     pub fn build(scene: Arc<Scene>, pretests: Pretests, count: bool) -> Self {
-        let (tris, ids) = super::flat::flatten(&scene);
+        // Moving instances are left out: this backend traces only the static scene.
+        let moving: Vec<bool> = scene.instances.iter().map(|i| i.motion.is_some()).collect();
+        let (tris, ids) = super::flat::flatten(&scene, &moving);
         let mut objects: Vec<Object> = Vec::with_capacity(scene.instances.len());
         for (t, id) in tris.into_iter().zip(ids) {
             if objects.last().is_none_or(|o| o.ids[0].inst() != id.inst()) {

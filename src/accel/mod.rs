@@ -11,9 +11,9 @@ mod conformance;
 pub mod embree;
 pub mod flat;
 pub mod grid;
+pub mod instances;
 pub mod layered;
 pub mod list;
-pub mod motion;
 pub mod objects;
 #[cfg(feature = "obvhs")]
 pub mod obvhs;

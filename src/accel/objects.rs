@@ -1,6 +1,6 @@
-//! Non-triangle primitives (CSG objects) for the Rust backends: a small binary BVH over their boxes
-//! that the triangle BVH and the grid consult after their own traversal, with the distance of their
-//! triangle hit as the limit, so the triangle hot loops stay as they are.
+//! Non-triangle primitives (CSG objects) for the Rust backends: a binary BVH over their boxes that
+//! the triangle BVH and the grid consult after their own traversal, with the distance of their
+//! triangle hit as the limit, so the triangle hot loops stay as they are (instances use it too).
 
 use crate::csg::CsgObject;
 use crate::geometry::median::MedianBvh;
@@ -38,10 +38,14 @@ pub struct ObjectBvh {
 
 impl ObjectBvh {
     pub fn build<P: Primitive>(prims: &[P]) -> Self {
-        let mut items: Vec<(u32, Aabb)> = prims
-            .iter()
+        Self::over(prims.iter().map(|p| p.bounds()))
+    }
+
+    /// The tree over items with these bounds (item `i` is the `i`th box; empty boxes are left out).
+    pub fn over(bounds: impl Iterator<Item = Aabb>) -> Self {
+        let mut items: Vec<(u32, Aabb)> = bounds
             .enumerate()
-            .map(|(i, p)| (i as u32, p.bounds()))
+            .map(|(i, b)| (i as u32, b))
             .filter(|(_, b)| !b.is_empty())
             .collect();
         let tree = MedianBvh::build(
@@ -58,6 +62,12 @@ impl ObjectBvh {
 
     pub fn is_empty(&self) -> bool {
         self.tree.is_empty()
+    }
+
+    /// Bytes held by the tree.
+    pub fn memory_bytes(&self) -> usize {
+        self.tree.nodes.len() * std::mem::size_of::<crate::geometry::median::Node>()
+            + self.prims.len() * std::mem::size_of::<u32>()
     }
 
     /// The closest hit on the primitives nearer than `best` (the caller's hit so far), else `best`.
@@ -114,7 +124,10 @@ impl ObjectBvh {
 
     /// Visits the primitives whose boxes the ray enters, nearest box first; `visit` returns whether
     /// to stop and the current far limit.
-    fn walk(&self, ray: &Ray, mut visit: impl FnMut(u32) -> (bool, f32)) {
+    pub fn walk(&self, ray: &Ray, mut visit: impl FnMut(u32) -> (bool, f32)) {
+        if self.is_empty() {
+            return;
+        }
         let inv = ray.d.recip();
         let mut t_max = ray.t_max;
         let enter = |b: &Aabb, t_max: f32| b.clip(ray.o, inv, ray.t_min, t_max).map(|(t, _)| t);
