@@ -112,7 +112,9 @@ pub fn flatten(scene: &Scene, skip: &[bool]) -> (Vec<[Vec3; 3]>, Vec<TriId>) {
     let large = |i: u32| mesh_of(i).indices.len() >= SPREAD_TRIANGLES;
     let mut k = 0;
     while k < kept.len() {
-        let end = if large(kept[k]) {
+        let first = kept[k];
+        let spread = large(first);
+        let end = if spread {
             k + 1
         } else {
             k + kept[k..]
@@ -121,9 +123,9 @@ pub fn flatten(scene: &Scene, skip: &[bool]) -> (Vec<[Vec3; 3]>, Vec<TriId>) {
                 .unwrap_or(kept.len() - k)
         };
         let run = &kept[k..end];
-        if large(kept[k]) {
-            let inst = &scene.instances[kept[k] as usize];
-            let mesh = mesh_of(kept[k]);
+        if spread {
+            let inst = &scene.instances[first as usize];
+            let mesh = mesh_of(first);
             let world: Vec<Vec3> = mesh
                 .positions
                 .par_iter()

@@ -16,7 +16,7 @@ use super::bvh::Bvh;
 use super::flat::TriId;
 use super::layered::Triangles;
 use super::objects::ObjectBvh;
-use crate::geometry::{gamma, Aabb, Hit, Ray};
+use crate::geometry::{Aabb, Hit, Ray};
 use crate::scene::Scene;
 
 /// A mesh placed more than once is traced through its instances, rather than copied into the
@@ -107,10 +107,11 @@ impl InstanceSet {
             .map(|p| {
                 let inst = &scene.instances[p.inst as usize];
                 let object = &object_bounds[p.bvh as usize];
-                padded(match &inst.motion {
+                match &inst.motion {
                     Some(motion) => motion.bounds(object),
                     None => object.transformed(&inst.to_world),
-                })
+                }
+                .padded()
             })
             .collect();
         Some(Self {
@@ -166,19 +167,6 @@ impl InstanceSet {
             (false, t_max)
         });
         best
-    }
-}
-
-/// `b` grown by a few ulps of its largest coordinate: its corners were rounded when transformed,
-/// and the surface inside must never fall outside by that rounding.
-fn padded(b: Aabb) -> Aabb {
-    if b.is_empty() {
-        return b;
-    }
-    let pad = glam::Vec3::splat(b.min.abs().max(b.max.abs()).max_element() * gamma(4));
-    Aabb {
-        min: b.min - pad,
-        max: b.max + pad,
     }
 }
 

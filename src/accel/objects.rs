@@ -81,9 +81,6 @@ impl ObjectBvh {
         best: Option<Hit>,
         tag: u32,
     ) -> Option<Hit> {
-        if self.is_empty() {
-            return best;
-        }
         let mut r = *ray;
         if let Some(h) = best {
             r.t_max = h.t;
@@ -111,9 +108,6 @@ impl ObjectBvh {
     /// Whether any primitive is hit in the ray's window.
     #[inline(never)]
     pub fn occluded<P: Primitive>(&self, prims: &[P], ray: &Ray) -> bool {
-        if self.is_empty() {
-            return false;
-        }
         let mut hit = false;
         self.walk(ray, |i| {
             hit = prims[i as usize].occluded(ray);
@@ -123,7 +117,7 @@ impl ObjectBvh {
     }
 
     /// Visits the primitives whose boxes the ray enters, nearest box first; `visit` returns whether
-    /// to stop and the current far limit.
+    /// to stop and the current far limit. Visits nothing when the tree is empty.
     pub fn walk(&self, ray: &Ray, mut visit: impl FnMut(u32) -> (bool, f32)) {
         if self.is_empty() {
             return;

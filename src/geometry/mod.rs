@@ -204,6 +204,19 @@ impl Aabb {
         }
         out
     }
+
+    /// This box grown by a few ulps of its largest coordinate, so that a surface whose corners were
+    /// rounded when transformed (as in `transformed`) never falls outside it by that rounding.
+    pub fn padded(self) -> Self {
+        if self.is_empty() {
+            return self;
+        }
+        let pad = Vec3::splat(self.min.abs().max(self.max.abs()).max_element() * gamma(4));
+        Self {
+            min: self.min - pad,
+            max: self.max + pad,
+        }
+    }
 }
 
 #[cfg(test)]
