@@ -115,6 +115,21 @@ pub struct Run {
     pub rel_mse_trim: f64,
 }
 
+impl Run {
+    /// Mean spp, seconds, RMSE, relMSE, RMSE* and relMSE*: the order of the table's and the CSV's
+    /// columns after the mode and parameter.
+    fn figures(&self) -> [f64; 6] {
+        [
+            self.mean_spp,
+            self.seconds,
+            self.rmse,
+            self.rel_mse,
+            self.rmse_trim,
+            self.rel_mse_trim,
+        ]
+    }
+}
+
 /// Mean of the values once the `trim` fraction of largest ones and as many of the smallest ones
 /// (pixels where the reference's own noise was large) are left out.
 fn trimmed_mean(mut v: Vec<f64>, trim: f64) -> f64 {
@@ -608,18 +623,18 @@ impl Report {
             "mode", "param", "mean spp", "time s", "RMSE", "relMSE", "RMSE*", "relMSE*"
         );
         for r in &self.runs {
-            let _ = writeln!(
-                s,
-                "{:<18} {:>8} {:>9.1} {:>9.3} {:>10.5} {:>11.3e} {:>10.5} {:>11.3e}",
-                r.mode,
-                r.param,
-                r.mean_spp,
-                r.seconds,
-                r.rmse,
-                r.rel_mse,
-                r.rmse_trim,
-                r.rel_mse_trim
-            );
+            let _ = write!(s, "{:<18} {:>8}", r.mode, r.param);
+            // (width, decimals, in exponent form) of each figure.
+            let formats = [(9, 1, false), (9, 3, false), (10, 5, false), (11, 3, true)];
+            let formats = formats.iter().chain(&formats[2..]);
+            for (x, &(w, p, exp)) in r.figures().iter().zip(formats) {
+                let _ = if exp {
+                    write!(s, " {x:>w$.p$e}")
+                } else {
+                    write!(s, " {x:>w$.p$}")
+                };
+            }
+            s.push('\n');
         }
         let _ = writeln!(
             s,
@@ -696,18 +711,14 @@ impl Report {
         );
         for r in &self.runs {
             let m = self.summary.iter().find(|m| m.mode == r.mode).unwrap();
+            let [spp, seconds, errors @ ..] = r.figures();
+            let errors = errors.map(|e| format!("{e:.6e}")).join(",");
             let _ = writeln!(
                 s,
-                "{},{},{},{:.3},{:.6},{:.6e},{:.6e},{:.6e},{:.6e},{:.4},{:.4},{:.4}",
+                "{},{},{},{spp:.3},{seconds:.6},{errors},{:.4},{:.4},{:.4}",
                 self.scene,
                 r.mode,
                 r.param,
-                r.mean_spp,
-                r.seconds,
-                r.rmse,
-                r.rel_mse,
-                r.rmse_trim,
-                r.rel_mse_trim,
                 m.corrected.slope_rmse_time,
                 m.corrected.slope_relmse_time,
                 m.slope_rmse_spp
@@ -841,4 +852,57 @@ type Panel = (&'static str, fn(&Run) -> f64, fn(&Fit) -> f64);
 /// An f32 parameter as the f64 it was written as (0.4, not 0.4000000059604645).
 fn short(t: f32) -> f64 {
     format!("{t}").parse().unwrap_or(t as f64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn report() -> Report {
+        let fit = Fit {
+            slope_rmse_time: -0.5,
+            slope_relmse_time: -1.0,
+            time_ratio_rmse_vs_random: Some(0.75),
+            time_ratio_relmse_vs_sobol: None,
+        };
+        Report {
+            scene: "s.glb".into(),
+            reference: "r.exr".into(),
+            runs: vec![Run {
+                mode: Mode::Uniform(SamplerKind::Sobol),
+                param: 16.0,
+                mean_spp: 16.25,
+                seconds: 1.23456,
+                rmse: 0.0123456,
+                rel_mse: 0.000123456,
+                rmse_trim: 0.0111111,
+                rel_mse_trim: 0.0000999,
+            }],
+            summary: vec![ModeSummary {
+                mode: Mode::Uniform(SamplerKind::Sobol),
+                slope_rmse_spp: -0.49,
+                corrected: fit,
+                raw: fit,
+            }],
+        }
+    }
+
+    /// The figures of a run sit in the table's and the CSV's columns with their own precision.
+    #[test]
+    fn a_run_prints_in_its_columns() {
+        let r = report();
+        let row = format!(
+            "{:<18} {:>8} {:>9.1} {:>9.3} {:>10.5} {:>11.3e} {:>10.5} {:>11.3e}",
+            "sobol", 16, 16.25, 1.23456, 0.0123456, 0.000123456, 0.0111111, 0.0000999
+        );
+        assert!(r.table().lines().any(|l| l == row), "{}", r.table());
+        let dir = tempfile::tempdir().unwrap();
+        let (runs, summary) = (dir.path().join("r.csv"), dir.path().join("s.csv"));
+        r.write_csv(&runs, &summary).unwrap();
+        let csv = std::fs::read_to_string(&runs).unwrap();
+        assert_eq!(
+            csv.lines().nth(1).unwrap(),
+            "s.glb,sobol,16,16.250,1.234560,1.234560e-2,1.234560e-4,1.111110e-2,9.990000e-5,-0.5000,-1.0000,-0.4900"
+        );
+    }
 }

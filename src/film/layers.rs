@@ -137,23 +137,12 @@ mod tests {
         let z = [4.0, f32::INFINITY];
         let ids = [7u32, u32::MAX];
         let layers = [
-            Layer {
-                name: "albedo",
-                values: Values::Rgb(&albedo),
-            },
-            Layer {
-                name: "N",
-                values: Values::Xyz(&albedo),
-            },
-            Layer {
-                name: "Z",
-                values: Values::Scalar(&z),
-            },
-            Layer {
-                name: "instance.id",
-                values: Values::Uint(&ids),
-            },
-        ];
+            ("albedo", Values::Rgb(&albedo)),
+            ("N", Values::Xyz(&albedo)),
+            ("Z", Values::Scalar(&z)),
+            ("instance.id", Values::Uint(&ids)),
+        ]
+        .map(|(name, values)| Layer { name, values });
         write_layers(&beauty, &layers, &path).unwrap();
         let ch = |n: &str| read_channel(&path, n).unwrap().unwrap();
         assert_eq!(ch("B"), [0.0, 3.0]);

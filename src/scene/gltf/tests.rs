@@ -35,6 +35,22 @@ fn geometry(pos: &[[f32; 3]], idx: &[u16]) -> Vec<u8> {
     b
 }
 
+/// A document over `data` (its one buffer, as a data URI) whose other top-level members are
+/// `members` (JSON object members, without the braces), written to `dir` as `name`.
+fn write_doc(dir: &tempfile::TempDir, name: &str, data: &[u8], members: &str) -> PathBuf {
+    let json = format!(
+        r#"{{"asset": {{"version": "2.0"}},
+  "buffers": [{{"byteLength": {len}, "uri": "data:application/octet-stream;base64,{b64}"}}],
+  {members}
+}}"#,
+        len = data.len(),
+        b64 = base64(data),
+    );
+    let p = dir.path().join(name);
+    std::fs::write(&p, json).unwrap();
+    p
+}
+
 /// A document whose mesh 0 is one primitive over `pos` (and `idx` when not empty), plus `extra`
 /// top-level members (nodes, scenes, ...), written to a temp dir.
 fn write(dir: &tempfile::TempDir, pos: &[[f32; 3]], idx: &[u16], extra: &str) -> PathBuf {
@@ -45,11 +61,8 @@ fn write(dir: &tempfile::TempDir, pos: &[[f32; 3]], idx: &[u16], extra: &str) ->
     } else {
         r#", "indices": 1"#.to_string()
     };
-    let json = format!(
-        r#"{{
-  "asset": {{"version": "2.0"}},
-  "buffers": [{{"byteLength": {len}, "uri": "data:application/octet-stream;base64,{b64}"}}],
-  "bufferViews": [
+    let members = format!(
+        r#""bufferViews": [
 {{"buffer": 0, "byteOffset": 0, "byteLength": {pos_len}}},
 {{"buffer": 0, "byteOffset": {pos_len}, "byteLength": {idx_len}}}
   ],
@@ -58,17 +71,18 @@ fn write(dir: &tempfile::TempDir, pos: &[[f32; 3]], idx: &[u16], extra: &str) ->
 {{"bufferView": 1, "componentType": 5123, "count": {ni}, "type": "SCALAR"}}
   ],
   "meshes": [{{"name": "tri", "primitives": [{{"attributes": {{"POSITION": 0}}{indices}}}]}}],
-  {extra}
-}}"#,
-        len = data.len(),
-        b64 = base64(&data),
+  {extra}"#,
         idx_len = (idx.len() * 2).max(2),
         np = pos.len(),
         ni = idx.len().max(1),
     );
-    let p = dir.path().join("t.gltf");
-    std::fs::write(&p, json).unwrap();
-    p
+    write_doc(dir, "t.gltf", &data, &members)
+}
+
+/// `write` into a fresh temp dir, then loaded (the scene holds no reference to the files).
+fn load(pos: &[[f32; 3]], idx: &[u16], extra: &str) -> Result<Scene, crate::scene::LoadError> {
+    let dir = tempfile::tempdir().unwrap();
+    Scene::load(&write(&dir, pos, idx, extra))
 }
 
 const TRI: [[f32; 3]; 3] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
@@ -84,11 +98,8 @@ fn morph_target_weights_are_animated_and_posed() {
         .chain([0.0, 1.0, 0.0, 1.0])
         .collect();
     let data: Vec<u8> = floats.iter().flat_map(|f| f.to_le_bytes()).collect();
-    let json = format!(
-        r#"{{
-  "asset": {{"version": "2.0"}},
-  "buffers": [{{"byteLength": {len}, "uri": "data:application/octet-stream;base64,{b64}"}}],
-  "bufferViews": [{{"buffer": 0, "byteLength": {len}}}],
+    let members = format!(
+        r#""bufferViews": [{{"buffer": 0, "byteLength": {len}}}],
   "accessors": [
 {{"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 3, "type": "VEC3"}},
 {{"bufferView": 0, "byteOffset": 36, "componentType": 5126, "count": 3, "type": "VEC3"}},
@@ -100,14 +111,11 @@ fn morph_target_weights_are_animated_and_posed() {
   "nodes": [{{"mesh": 0}}],
   "scenes": [{{"nodes": [0]}}],
   "animations": [{{"channels": [{{"sampler": 0, "target": {{"node": 0, "path": "weights"}}}}],
-               "samplers": [{{"input": 2, "output": 3}}]}}]
-}}"#,
+               "samplers": [{{"input": 2, "output": 3}}]}}]"#,
         len = data.len(),
-        b64 = base64(&data),
     );
     let dir = tempfile::tempdir().unwrap();
-    let p = dir.path().join("m.gltf");
-    std::fs::write(&p, json).unwrap();
+    let p = write_doc(&dir, "m.gltf", &data, &members);
     let scene = Scene::load(&p).unwrap();
     assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
     let z_at = |t: f32| {
@@ -129,15 +137,13 @@ fn morph_target_weights_are_animated_and_posed() {
 
 #[test]
 fn one_mesh_two_nodes_is_one_mesh_two_instances() {
-    let dir = tempfile::tempdir().unwrap();
-    let p = write(
-        &dir,
+    let s = load(
         &TRI,
         &[0, 1, 2],
         r#""nodes": [{"mesh": 0, "translation": [5, 0, 0]}, {"mesh": 0}],
            "scenes": [{"nodes": [0, 1]}], "scene": 0"#,
-    );
-    let s = Scene::load(&p).unwrap();
+    )
+    .unwrap();
     assert_eq!(s.meshes.len(), 1);
     assert_eq!(s.instances.len(), 2);
     assert_eq!(s.stats.triangles, 2);
@@ -157,16 +163,14 @@ fn one_mesh_two_nodes_is_one_mesh_two_instances() {
 
 #[test]
 fn hierarchy_composes_parent_then_child() {
-    let dir = tempfile::tempdir().unwrap();
-    let p = write(
-        &dir,
+    let s = load(
         &TRI,
         &[0, 1, 2],
         r#""nodes": [{"translation": [1, 0, 0], "scale": [2, 2, 2], "children": [1]},
                      {"mesh": 0, "translation": [0, 1, 0]}],
            "scenes": [{"nodes": [0]}]"#,
-    );
-    let s = Scene::load(&p).unwrap();
+    )
+    .unwrap();
     assert_eq!(s.instances.len(), 1);
     let m = s.instances[0].to_world;
     assert!((m.transform_point3(Vec3::ZERO) - Vec3::new(1.0, 2.0, 0.0)).length() < 1e-6);
@@ -175,20 +179,17 @@ fn hierarchy_composes_parent_then_child() {
 
 #[test]
 fn no_scenes_uses_root_nodes() {
-    let dir = tempfile::tempdir().unwrap();
-    let p = write(
-        &dir,
+    let s = load(
         &TRI,
         &[0, 1, 2],
         r#""nodes": [{"children": [1]}, {"mesh": 0}, {"mesh": 0}]"#,
-    );
-    let s = Scene::load(&p).unwrap();
+    )
+    .unwrap();
     assert_eq!(s.instances.len(), 2);
 }
 
 #[test]
 fn non_indexed_primitive_and_computed_normals() {
-    let dir = tempfile::tempdir().unwrap();
     let quad = [
         [0.0, 0.0, 0.0],
         [1.0, 0.0, 0.0],
@@ -197,13 +198,12 @@ fn non_indexed_primitive_and_computed_normals() {
         [1.0, 1.0, 0.0],
         [0.0, 1.0, 0.0],
     ];
-    let p = write(
-        &dir,
+    let s = load(
         &quad,
         &[],
         r#""nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}]"#,
-    );
-    let s = Scene::load(&p).unwrap();
+    )
+    .unwrap();
     assert_eq!(s.meshes[0].indices.len(), 2);
     assert_eq!(s.stats.triangles, 2);
     assert_eq!(s.meshes[0].normals.len(), 6);
@@ -215,7 +215,6 @@ fn non_indexed_primitive_and_computed_normals() {
 
 #[test]
 fn nan_and_degenerate_triangles_are_dropped_with_one_warning() {
-    let dir = tempfile::tempdir().unwrap();
     let pos = [
         [0.0, 0.0, 0.0],
         [1.0, 0.0, 0.0],
@@ -226,13 +225,12 @@ fn nan_and_degenerate_triangles_are_dropped_with_one_warning() {
     ];
     // valid, NaN corner, repeated index, collinear (zero area), infinite corner
     let idx = [0, 1, 2, 0, 3, 1, 0, 0, 1, 0, 1, 4, 5, 1, 2];
-    let p = write(
-        &dir,
+    let s = load(
         &pos,
         &idx,
         r#""nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}]"#,
-    );
-    let s = Scene::load(&p).unwrap();
+    )
+    .unwrap();
     assert_eq!(s.meshes[0].indices.len(), 1);
     assert!(s.meshes[0].positions.iter().all(|p| p.is_finite()));
     assert_eq!(s.meshes[0].positions.len(), 3);
@@ -248,15 +246,15 @@ fn nan_and_degenerate_triangles_are_dropped_with_one_warning() {
 #[test]
 fn unsupported_required_extension_is_a_clear_error() {
     let dir = tempfile::tempdir().unwrap();
-    let p = write(
-        &dir,
+    let e = load(
         &TRI,
         &[0, 1, 2],
         r#""nodes": [{"mesh": 0}],
            "extensionsUsed": ["EXT_lights_image_based", "KHR_materials_volume"],
            "extensionsRequired": ["KHR_materials_volume", "EXT_lights_image_based"]"#,
-    );
-    let e = Scene::load(&p).unwrap_err().to_string();
+    )
+    .unwrap_err()
+    .to_string();
     assert!(
         e.contains("requires unsupported extension EXT_lights_image_based"),
         "{e}"
@@ -275,7 +273,6 @@ fn unsupported_required_extension_is_a_clear_error() {
 
 #[test]
 fn spot_and_point_lights() {
-    let dir = tempfile::tempdir().unwrap();
     let h = std::f32::consts::FRAC_1_SQRT_2;
     let extra = format!(
         r#""extensionsUsed": ["KHR_lights_punctual"],
@@ -292,8 +289,7 @@ fn spot_and_point_lights() {
            "scenes": [{{"nodes": [0, 1, 2]}}]"#,
         nx = -h
     );
-    let p = write(&dir, &TRI, &[0, 1, 2], &extra);
-    let s = Scene::load(&p).unwrap();
+    let s = load(&TRI, &[0, 1, 2], &extra).unwrap();
     assert_eq!(s.lights.len(), 3);
     assert_eq!(s.stats.lights, 3);
     // The node turns -Z to -Y: compare the direction within rounding, the rest exactly.
@@ -333,9 +329,7 @@ fn spot_and_point_lights() {
 
 #[test]
 fn cameras_in_document_order_without_scale() {
-    let dir = tempfile::tempdir().unwrap();
-    let p = write(
-        &dir,
+    let s = load(
         &TRI,
         &[0, 1, 2],
         r#""cameras": [
@@ -346,8 +340,8 @@ fn cameras_in_document_order_without_scale() {
            "nodes": [{"name": "orthoNode", "camera": 1, "translation": [0, 0, 9]},
                      {"camera": 0, "translation": [1, 2, 3], "scale": [2, 2, 2]}],
            "scenes": [{"nodes": [0, 1]}]"#,
-    );
-    let s = Scene::load(&p).unwrap();
+    )
+    .unwrap();
     assert_eq!(s.cameras.len(), 2);
     assert_eq!(s.stats.cameras, 2);
     let c0 = &s.cameras[0];
@@ -462,9 +456,9 @@ fn accessor_past_its_buffer_is_an_error_naming_the_mesh() {
 
 #[test]
 fn index_out_of_range_is_an_error() {
-    let dir = tempfile::tempdir().unwrap();
-    let p = write(&dir, &TRI, &[0, 1, 7], r#""nodes": [{"mesh": 0}]"#);
-    let e = Scene::load(&p).unwrap_err().to_string();
+    let e = load(&TRI, &[0, 1, 7], r#""nodes": [{"mesh": 0}]"#)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("index 7 out of range"), "{e}");
 }
 
@@ -638,14 +632,10 @@ fn write_attrs(
         ));
         data.extend(padded);
     }
-    let json = format!(
-        r#"{{"asset": {{"version": "2.0"}},
-  "extensionsUsed": ["KHR_mesh_quantization"], "extensionsRequired": ["KHR_mesh_quantization"],
-  "buffers": [{{"byteLength": {len}, "uri": "data:application/octet-stream;base64,{b64}"}}],
+    let members = format!(
+        r#""extensionsUsed": ["KHR_mesh_quantization"], "extensionsRequired": ["KHR_mesh_quantization"],
   "bufferViews": [{views}], "accessors": [{accs}],
-  "meshes": [{{"primitives": [{{"attributes": {{{attrs}}}{material}}}]}}], "nodes": [{{"mesh": 0}}] {extra}}}"#,
-        len = data.len(),
-        b64 = base64(&data),
+  "meshes": [{{"primitives": [{{"attributes": {{{attrs}}}{material}}}]}}], "nodes": [{{"mesh": 0}}] {extra}"#,
         views = views.join(","),
         accs = accs.join(","),
         material = if extra.contains("\"materials\"") {
@@ -654,9 +644,7 @@ fn write_attrs(
             ""
         },
     );
-    let p = dir.path().join("q.gltf");
-    std::fs::write(&p, json).unwrap();
-    p
+    write_doc(dir, "q.gltf", &data, &members)
 }
 
 /// Integer components as little-endian bytes of component type `ct`.
@@ -795,12 +783,9 @@ fn animation_pointer_moves_factors_lights_and_fov() {
         ptr(1, "/materials/0/occlusionTexture/strength"),
     ]
     .join(",\n");
-    let json = format!(
-        r#"{{
-  "asset": {{"version": "2.0"}},
-  "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_animation_pointer"],
+    let members = format!(
+        r#""extensionsUsed": ["KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_animation_pointer"],
   "extensions": {{"KHR_lights_punctual": {{"lights": [{{"type": "point", "color": [1, 0.5, 0.25], "intensity": 10}}]}}}},
-  "buffers": [{{"byteLength": {len}, "uri": "data:application/octet-stream;base64,{b64}"}}],
   "bufferViews": [{{"buffer": 0, "byteLength": {len}}}],
   "accessors": [
 {{"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 3, "type": "VEC3"}},
@@ -819,14 +804,11 @@ fn animation_pointer_moves_factors_lights_and_fov() {
   "scenes": [{{"nodes": [0, 1, 2]}}],
   "animations": [{{"channels": [{channels}],
     "samplers": [{{"input": 1, "output": 2}}, {{"input": 1, "output": 3}},
-                 {{"input": 1, "output": 4}}, {{"input": 1, "output": 5}}]}}]
-}}"#,
+                 {{"input": 1, "output": 4}}, {{"input": 1, "output": 5}}]}}]"#,
         len = data.len(),
-        b64 = base64(&data),
     );
     let dir = tempfile::tempdir().unwrap();
-    let p = dir.path().join("ptr.gltf");
-    std::fs::write(&p, json).unwrap();
+    let p = write_doc(&dir, "ptr.gltf", &data, &members);
     let scene = Scene::load(&p).unwrap();
     assert_eq!(scene.warnings.len(), 1, "{:?}", scene.warnings);
     assert!(scene.warnings[0].contains("occlusionTexture/strength"));
@@ -878,10 +860,7 @@ fn animation_pointer_with_a_bad_sampler_or_type_is_an_error() {
         .collect();
     let doc = |sampler: usize, pointer: &str| {
         format!(
-            r#"{{
-  "asset": {{"version": "2.0"}},
-  "buffers": [{{"byteLength": {len}, "uri": "data:application/octet-stream;base64,{b64}"}}],
-  "bufferViews": [{{"buffer": 0, "byteLength": {len}}}],
+            r#""bufferViews": [{{"buffer": 0, "byteLength": {len}}}],
   "accessors": [
 {{"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 3, "type": "VEC3"}},
 {{"bufferView": 0, "byteOffset": 36, "componentType": 5126, "count": 2, "type": "SCALAR"}},
@@ -892,17 +871,15 @@ fn animation_pointer_with_a_bad_sampler_or_type_is_an_error() {
   "nodes": [{{"mesh": 0}}],
   "animations": [{{"channels": [{{"sampler": {sampler}, "target": {{"path": "pointer",
       "extensions": {{"KHR_animation_pointer": {{"pointer": "{pointer}"}}}}}}}}],
-    "samplers": [{{"input": 1, "output": 2}}]}}]
-}}"#,
+    "samplers": [{{"input": 1, "output": 2}}]}}]"#,
             len = data.len(),
-            b64 = base64(&data),
         )
     };
     let dir = tempfile::tempdir().unwrap();
-    let load = |json: String| {
-        let p = dir.path().join("bad.gltf");
-        std::fs::write(&p, json).unwrap();
-        Scene::load(&p).map(|_| ()).map_err(|e| e.to_string())
+    let load = |members: String| {
+        Scene::load(&write_doc(&dir, "bad.gltf", &data, &members))
+            .map(|_| ())
+            .map_err(|e| e.to_string())
     };
     assert!(load(doc(0, "/materials/0/pbrMetallicRoughness/roughnessFactor")).is_ok());
     let e = load(doc(3, "/materials/0/pbrMetallicRoughness/roughnessFactor")).unwrap_err();
@@ -910,13 +887,13 @@ fn animation_pointer_with_a_bad_sampler_or_type_is_an_error() {
     let e = load(doc(0, "/materials/0/emissiveFactor")).unwrap_err();
     assert!(e.contains("Scalar") && e.contains("Vec3"), "{e}");
     // A pointer at an element the file lacks is held, with a warning.
-    let p = dir.path().join("far.gltf");
-    std::fs::write(
-        &p,
-        doc(0, "/materials/7/pbrMetallicRoughness/roughnessFactor"),
-    )
+    let s = Scene::load(&write_doc(
+        &dir,
+        "far.gltf",
+        &data,
+        &doc(0, "/materials/7/pbrMetallicRoughness/roughnessFactor"),
+    ))
     .unwrap();
-    let s = Scene::load(&p).unwrap();
     assert!(
         s.warnings.iter().any(|w| w.contains("/materials/7/")),
         "{:?}",
