@@ -1,5 +1,6 @@
 //! Warps from the unit square onto the domains the renderer samples (disk, hemisphere, cone,
-//! triangle, spherical triangle), each beside its pdf on that domain and its inverse back to the square.
+//! triangle, spherical triangle, spherical rectangle, and the square itself by a bilinear
+//! density), each beside its pdf on that domain and its inverse back to the square.
 //!
 //! The forward maps keep the arithmetic the renders were made with: images depend on their last bits.
 
@@ -155,6 +156,217 @@ pub fn spherical_triangle(a: Vec3, b: Vec3, c: Vec3, u: Vec2) -> Option<Vec3> {
     Some(cos_t * b + sin_t * (cp - b * cp.dot(b)).try_normalize()?)
 }
 
+/// The square point `spherical_triangle(a, b, c, u)` maps to direction `w` (pbrt-v4's inversion of
+/// Arvo's map): the sub-triangle a, b, c' through `w` gives `u.x` by its area, the arc from b to c'
+/// gives `u.y`. None for a degenerate triangle.
+pub fn spherical_triangle_inverse(a: Vec3, b: Vec3, c: Vec3, w: Vec3) -> Option<Vec2> {
+    let (n_ab, n_bc, n_ca) = (
+        a.cross(b).try_normalize()?,
+        b.cross(c).try_normalize()?,
+        c.cross(a).try_normalize()?,
+    );
+    let alpha = angle_between(n_ab, -n_ca);
+    let area = alpha + angle_between(n_bc, -n_ab) + angle_between(n_ca, -n_bc) - PI;
+    if area.is_nan() || area <= 0.0 {
+        return None;
+    }
+    // c' is where the great circle through b and w meets the arc from a to c.
+    let mut cp = b.cross(w).cross(c.cross(a)).try_normalize()?;
+    if cp.dot(a + c) < 0.0 {
+        cp = -cp;
+    }
+    // Within 0.1 degrees of a, the sub-triangle's area is lost to rounding: it is empty.
+    let ux = if a.dot(cp) > 0.999_998_5 {
+        0.0
+    } else {
+        match (cp.cross(b).try_normalize(), a.cross(cp).try_normalize()) {
+            (Some(n_cpb), Some(n_acp)) => {
+                let sub = alpha + angle_between(n_ab, n_cpb) + angle_between(n_acp, -n_cpb) - PI;
+                sub / area
+            }
+            _ => 0.5,
+        }
+    };
+    let uy = (1.0 - w.dot(b)) / (1.0 - cp.dot(b));
+    Some(Vec2::new(ux.clamp(0.0, 1.0), uy.clamp(0.0, 1.0)))
+}
+
+/// A rectangle as seen from a point, set up for Urena, Fajardo and King's (2013) sampling of the
+/// solid angle it subtends: in the frame of its edges, with the point at the origin and the
+/// rectangle's plane at z = `z0` < 0; `x0..x1` and `y0..y1` are its extents in that plane.
+#[derive(Clone, Copy, Debug)]
+pub struct SphericalRectangle {
+    origin: Vec3,
+    /// The frame: unit edges and the normal pointing away from the rectangle.
+    x: Vec3,
+    y: Vec3,
+    z: Vec3,
+    x0: f32,
+    x1: f32,
+    y0: f32,
+    y1: f32,
+    z0: f32,
+    /// The z components of the normals of the planes through the origin and the edges at y0 and y1.
+    b0: f32,
+    b1: f32,
+    /// The offset of the sub-rectangle area in `sample` (2 pi less two of the corner angles).
+    k: f32,
+    area: f32,
+}
+
+impl SphericalRectangle {
+    /// The rectangle with corner `corner` and orthogonal edges `ex`, `ey`, seen from `p`; None
+    /// where it subtends no solid angle (degenerate, or `p` in its plane).
+    pub fn new(p: Vec3, corner: Vec3, ex: Vec3, ey: Vec3) -> Option<Self> {
+        let (exl, eyl) = (ex.length(), ey.length());
+        let (x, y) = (ex / exl, ey / eyl);
+        let mut z = x.cross(y);
+        let d = corner - p;
+        let (x0, y0, mut z0) = (d.dot(x), d.dot(y), d.dot(z));
+        if z0 > 0.0 {
+            z = -z;
+            z0 = -z0;
+        }
+        let (x1, y1) = (x0 + exl, y0 + eyl);
+        let v00 = Vec3::new(x0, y0, z0);
+        let v01 = Vec3::new(x0, y1, z0);
+        let v10 = Vec3::new(x1, y0, z0);
+        let v11 = Vec3::new(x1, y1, z0);
+        let n0 = v00.cross(v10).try_normalize()?;
+        let n1 = v10.cross(v11).try_normalize()?;
+        let n2 = v11.cross(v01).try_normalize()?;
+        let n3 = v01.cross(v00).try_normalize()?;
+        let (g0, g1) = (angle_between(-n0, n1), angle_between(-n1, n2));
+        let (g2, g3) = (angle_between(-n2, n3), angle_between(-n3, n0));
+        let k = 2.0 * PI - g2 - g3;
+        let area = g0 + g1 - k;
+        if area.is_nan() || area <= 0.0 {
+            return None;
+        }
+        Some(Self {
+            origin: p,
+            x,
+            y,
+            z,
+            x0,
+            x1,
+            y0,
+            y1,
+            z0,
+            b0: n0.z,
+            b1: n2.z,
+            k,
+            area,
+        })
+    }
+
+    /// The solid angle (sr); the pdf of `sample` is its inverse.
+    pub fn solid_angle(&self) -> f32 {
+        self.area
+    }
+
+    /// A point of the rectangle whose direction from the origin is uniform in solid angle: `u.x`
+    /// picks the sub-rectangle `x0..xu` of area `u.x` times the whole, `u.y` the height along it
+    /// (uniform in the sine of its elevation).
+    pub fn sample(&self, u: Vec2) -> Vec3 {
+        let au = u.x * self.area + self.k;
+        let fu = (au.cos() * self.b0 - self.b1) / au.sin();
+        let cu = (1.0 / (fu * fu + self.b0 * self.b0).sqrt())
+            .copysign(fu)
+            .clamp(-1.0 + f32::EPSILON, 1.0 - f32::EPSILON);
+        let xu = (-(cu * self.z0) / (1.0 - cu * cu).max(0.0).sqrt()).clamp(self.x0, self.x1);
+        let dd = (xu * xu + self.z0 * self.z0).sqrt();
+        let (h0, h1) = self.heights(dd);
+        let hv = h0 + u.y * (h1 - h0);
+        let yv = if hv * hv < 1.0 - 1e-6 {
+            hv * dd / (1.0 - hv * hv).sqrt()
+        } else {
+            self.y1
+        };
+        self.origin + self.x * xu + self.y * yv.clamp(self.y0, self.y1) + self.z * self.z0
+    }
+
+    /// The square point `sample` maps to point `q` of the rectangle.
+    pub fn inverse(&self, q: Vec3) -> Vec2 {
+        let d = q - self.origin;
+        let (xu, yv) = (d.dot(self.x), d.dot(self.y));
+        // The sub-rectangle x0..xu, as `sample` measures it.
+        let corner = self.origin + self.x * self.x0 + self.y * self.y0 + self.z * self.z0;
+        let sub = Self::new(
+            self.origin,
+            corner,
+            self.x * (xu - self.x0),
+            self.y * (self.y1 - self.y0),
+        )
+        .map_or(0.0, |s| s.area);
+        let dd = (xu * xu + self.z0 * self.z0).sqrt();
+        let (h0, h1) = self.heights(dd);
+        let hv = yv / (dd * dd + yv * yv).sqrt();
+        Vec2::new(
+            (sub / self.area).clamp(0.0, 1.0),
+            ((hv - h0) / (h1 - h0)).clamp(0.0, 1.0),
+        )
+    }
+
+    /// The sines of the elevations of the rectangle's edges at y0 and y1 seen across distance `dd`.
+    fn heights(&self, dd: f32) -> (f32, f32) {
+        let h = |y: f32| y / (dd * dd + y * y).sqrt();
+        (h(self.y0), h(self.y1))
+    }
+}
+
+/// `x` in [0, 1] with density proportional to the line from `a` at 0 to `b` at 1 (a, b >= 0).
+fn linear(u: f32, a: f32, b: f32) -> f32 {
+    if a + b <= 0.0 {
+        return u;
+    }
+    if u == 0.0 && a == 0.0 {
+        return 0.0;
+    }
+    let x = u * (a + b) / (a + (a * a + u * (b * b - a * a)).max(0.0).sqrt());
+    x.min(1.0 - f32::EPSILON / 2.0)
+}
+
+fn linear_inverse(x: f32, a: f32, b: f32) -> f32 {
+    if a + b <= 0.0 {
+        return x;
+    }
+    x * (a * (2.0 - x) + b * x) / (a + b)
+}
+
+/// A point of the unit square with density proportional to the bilinear interpolation of the
+/// corner weights `w` (at (0, 0), (1, 0), (0, 1), (1, 1); non-negative): y from its marginal, then
+/// x from its conditional. Used to warp a square sample by the cosines at a light's corners.
+pub fn bilinear(u: Vec2, w: [f32; 4]) -> Vec2 {
+    let y = linear(u.y, w[0] + w[1], w[2] + w[3]);
+    let lerp = |a: f32, b: f32| a + y * (b - a);
+    Vec2::new(linear(u.x, lerp(w[0], w[2]), lerp(w[1], w[3])), y)
+}
+
+pub fn bilinear_pdf(p: Vec2, w: [f32; 4]) -> f32 {
+    if p.min_element() < 0.0 || p.max_element() > 1.0 {
+        return 0.0;
+    }
+    let sum = w.iter().sum::<f32>();
+    if sum <= 0.0 {
+        return 1.0;
+    }
+    let (x, y) = (p.x, p.y);
+    4.0 * ((1.0 - x) * (1.0 - y) * w[0]
+        + x * (1.0 - y) * w[1]
+        + (1.0 - x) * y * w[2]
+        + x * y * w[3])
+        / sum
+}
+
+pub fn bilinear_inverse(p: Vec2, w: [f32; 4]) -> Vec2 {
+    let lerp = |a: f32, b: f32| a + p.y * (b - a);
+    Vec2::new(
+        linear_inverse(p.x, lerp(w[0], w[2]), lerp(w[1], w[3])),
+        linear_inverse(p.y, w[0] + w[1], w[2] + w[3]),
+    )
+}
+
 /// The angle between unit vectors, accurate near 0 and pi (half-chord arcsines).
 fn angle_between(v1: Vec3, v2: Vec3) -> f32 {
     if v1.dot(v2) < 0.0 {
@@ -269,6 +481,136 @@ mod tests {
             assert!(b1 >= 0.0 && b2 >= 0.0 && b1 + b2 <= 1.0 + 1e-6);
             assert_round_trip(u, uniform_triangle_inverse(b1, b2), "uniform triangle");
         }
+    }
+
+    #[test]
+    fn bilinear_pdf_integrates_to_one_matches_its_samples_and_inverts() {
+        for w in [
+            [1.0, 1.0, 1.0, 1.0],
+            [0.01, 0.5, 2.0, 0.3],
+            [0.0, 1.0, 0.0, 1.0],
+        ] {
+            let n = 256;
+            let total = grid(n).map(|p| bilinear_pdf(p, w)).sum::<f32>() / (n * n) as f32;
+            assert!((total - 1.0).abs() < 1e-4, "{w:?}: {total}");
+            // 4 x 4 bins of a grid of samples hold what the pdf gives them (midpoint rule).
+            let mut bins = [0f64; 16];
+            let m = 512;
+            for u in grid(m) {
+                let p = bilinear(u, w);
+                assert!(p.min_element() >= 0.0 && p.max_element() < 1.0, "{p}");
+                let k = (p.y * 4.0) as usize * 4 + (p.x * 4.0) as usize;
+                bins[k] += 1.0 / (m * m) as f64;
+                assert_round_trip(u, bilinear_inverse(p, w), "bilinear");
+            }
+            for (k, &got) in bins.iter().enumerate() {
+                let cell = Vec2::new((k % 4) as f32, (k / 4) as f32) / 4.0;
+                let expected = grid(32)
+                    .map(|q| bilinear_pdf(cell + q / 4.0, w) as f64)
+                    .sum::<f64>()
+                    / (16.0 * 1024.0);
+                assert!(
+                    (got - expected).abs() < 0.02 * expected + 1e-4,
+                    "{w:?} bin {k}: {got} vs {expected}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn spherical_triangle_inverts() {
+        let v = [
+            Vec3::new(0.3, -0.2, 1.0),
+            Vec3::new(2.0, 0.4, 0.6),
+            Vec3::new(-0.5, 1.5, 0.9),
+        ];
+        for p in [
+            Vec3::ZERO,
+            Vec3::new(0.2, 0.1, 0.75),
+            Vec3::new(0.0, 0.0, -8.0),
+        ] {
+            let [a, b, c] = v.map(|q| (q - p).normalize());
+            for u in grid(37) {
+                let w = spherical_triangle(a, b, c, u).unwrap();
+                let back = spherical_triangle_inverse(a, b, c, w).unwrap();
+                assert!(
+                    (u - back).abs().max_element() < 2e-3,
+                    "from {p}: {u} -> {back}"
+                );
+            }
+        }
+        assert!(spherical_triangle_inverse(Vec3::X, Vec3::X, Vec3::Y, Vec3::Z).is_none());
+    }
+
+    /// Uniform in solid angle over a rectangle, checked by counting: 4 x 4 cells of
+    /// the rectangle receive samples in proportion to the solid angles they subtend (each measured
+    /// as a rectangle of its own); samples invert; the solid angle matches the sum of the cells'.
+    #[test]
+    fn spherical_rectangle_is_uniform_in_solid_angle_and_inverts() {
+        let (corner, ex, ey) = (
+            Vec3::new(-0.7, 1.0, -0.4),
+            Vec3::new(1.6, 0.0, 0.0),
+            Vec3::new(0.0, 0.6, 0.8),
+        );
+        for p in [
+            Vec3::ZERO,
+            Vec3::new(0.1, 1.6, 0.2),
+            Vec3::new(3.0, -2.0, 1.0),
+        ] {
+            let r = SphericalRectangle::new(p, corner, ex, ey).unwrap();
+            let cell = |i: usize, j: usize| {
+                let c = corner + ex * (i as f32 / 4.0) + ey * (j as f32 / 4.0);
+                SphericalRectangle::new(p, c, ex / 4.0, ey / 4.0)
+                    .unwrap()
+                    .solid_angle() as f64
+            };
+            let total: f64 = (0..16).map(|k| cell(k % 4, k / 4)).sum();
+            assert!(
+                (total - r.solid_angle() as f64).abs() < 1e-4 * total,
+                "from {p}: {total} vs {}",
+                r.solid_angle()
+            );
+            let mut bins = [0f64; 16];
+            // Points of the R2 sequence, not a grid: the sub-rectangle edges are lines of
+            // constant u.x, and a grid aligned with them miscounts whole columns of cells.
+            let m = 512;
+            let r2 = (0..m * m).map(|k| {
+                let k = k as f64 + 0.5;
+                Vec2::new(
+                    (k * 0.754_877_666_2).fract() as f32,
+                    (k * 0.569_840_291).fract() as f32,
+                )
+            });
+            for u in r2 {
+                let q = r.sample(u);
+                let d = q - corner;
+                let (s, t) = (
+                    d.dot(ex) / ex.length_squared(),
+                    d.dot(ey) / ey.length_squared(),
+                );
+                assert!(
+                    (-1e-5..=1.0 + 1e-5).contains(&s) && (-1e-5..=1.0 + 1e-5).contains(&t),
+                    "from {p}: {s} {t}"
+                );
+                assert!(d.dot(ex.cross(ey)).abs() < 1e-5, "off the plane");
+                let k = ((t * 4.0) as usize).min(3) * 4 + ((s * 4.0) as usize).min(3);
+                bins[k] += 1.0 / (m * m) as f64;
+                let back = r.inverse(q);
+                assert!(
+                    (u - back).abs().max_element() < 2e-3,
+                    "from {p}: {u} -> {back}"
+                );
+            }
+            for (k, &got) in bins.iter().enumerate() {
+                let expected = cell(k % 4, k / 4) / total;
+                assert!(
+                    (got - expected).abs() < 0.01 * expected + 1e-4,
+                    "from {p}, cell {k}: {got} vs {expected}"
+                );
+            }
+        }
+        // From a point in its plane it subtends nothing.
+        assert!(SphericalRectangle::new(corner + ex * 2.0, corner, ex, ey).is_none());
     }
 
     #[test]

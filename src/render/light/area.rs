@@ -26,6 +26,11 @@ pub(super) trait AreaLight {
     fn bounds(&self, phi: f32) -> LightBounds;
 }
 
+/// The solid angles (sr) between which emissive triangles and rectangles are sampled by solid
+/// angle (pbrt-v4's bounds): below, area sampling is as good and the spherical warps lose
+/// precision; above, the light nearly fills a hemisphere and the warps' corner angles do.
+pub(super) const SPHERICAL_SOLID_ANGLES: std::ops::RangeInclusive<f32> = 3e-4..=6.22;
+
 /// The solid-angle pdf, times `scale`, of a point drawn uniformly over `area`, seen from squared
 /// distance `d2` at cosine `cos` to its normal. Light sampling passes its choice probability as
 /// `scale` and rays finding a light pass 1 and weigh after: the order the renders were made with.

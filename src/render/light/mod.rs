@@ -286,7 +286,7 @@ impl LightSet {
                 pdf: choice,
                 is_delta: true,
             }),
-            Entry::Triangle(t) => t.sample(scene, p, u, choice),
+            Entry::Triangle(t) => t.sample(scene, ctx, u, choice),
             Entry::Sphere(s) => s.sample(p, u, choice),
             Entry::Disk(d) => d.sample(p, u, choice),
             Entry::Rect(r) => r.sample(p, u, choice),
@@ -310,7 +310,7 @@ impl LightSet {
         let Entry::Triangle(t) = &self.entries[i] else {
             return 0.0;
         };
-        t.pdf(self.chooser.pmf(ctx, i), ctx.p, q, nq)
+        t.pdf(self.chooser.pmf(ctx, i), ctx, q, nq)
     }
 
     /// Radiance that `ray` receives from analytic area lights in front of `t_max` (the scene hit),

@@ -1,14 +1,16 @@
-//! One-sided parallelogram ("rect") lights: sampled uniformly over their two edges, hit where a ray
-//! meets their plane inside both edges.
+//! One-sided parallelogram ("rect") lights: a rectangle sampled uniformly in the solid angle it
+//! subtends (Urena et al. 2013) where that is not tiny, otherwise (and a parallelogram always)
+//! uniformly over its two edges; hit where a ray meets their plane inside both edges.
 
 use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
-use super::area::{area_pdf, area_sample, hit_plane, AreaLight};
+use super::area::{area_pdf, area_sample, hit_plane, AreaLight, SPHERICAL_SOLID_ANGLES};
 use super::bounds::LightBounds;
 use super::LightSample;
 use crate::render::bsdf::luminance;
+use crate::sample::warp::SphericalRectangle;
 use crate::scene::RectLight;
 
 /// The scene's parallelogram with its unit normal and area.
@@ -18,6 +20,8 @@ pub(super) struct Rect {
     /// Unit `edge_u x edge_v`, the emitting side.
     normal: Vec3,
     area: f32,
+    /// Whether the edges are orthogonal (to rounding), so that it can be sampled by solid angle.
+    rectangular: bool,
 }
 
 impl Rect {
@@ -27,7 +31,24 @@ impl Rect {
             shape,
             normal: c.normalize_or_zero(),
             area: c.length(),
+            rectangular: shape.edge_u.dot(shape.edge_v).abs()
+                <= 1e-5 * shape.edge_u.length() * shape.edge_v.length(),
         }
+    }
+
+    /// The rectangle as seen from `p`, where it is sampled by solid angle from there: where it
+    /// looks larger than `NEAR_SOLID_ANGLE` by its centre's distance and cosine.
+    fn spherical(&self, p: Vec3) -> Option<SphericalRectangle> {
+        let s = &self.shape;
+        let d = s.corner + 0.5 * (s.edge_u + s.edge_v) - p;
+        let d2 = d.length_squared();
+        if !self.rectangular
+            || self.area * d.dot(self.normal).abs() < NEAR_SOLID_ANGLE * d2 * d2.sqrt()
+        {
+            return None;
+        }
+        SphericalRectangle::new(p, s.corner, s.edge_u, s.edge_v)
+            .filter(|r| SPHERICAL_SOLID_ANGLES.contains(&r.solid_angle()))
     }
 
     /// Whether `q`, on the plane, lies inside the parallelogram (coordinates by the dual basis of
@@ -47,6 +68,14 @@ impl Rect {
     }
 }
 
+/// The estimated solid angle (sr) from which a rectangle is sampled by solid angle. Its light
+/// samples vary about 0.06x as much as area samples at any distance (0.03x from closer than a
+/// tenth of its size), but from farther away that variance is a small part of an image's noise
+/// and the spherical map's trigonometry is not: on assets/scenes/effects.toml and csg.toml (rects
+/// of 0.14 and 0.2 sr) sampling by solid angle left the noise unchanged (sigma 0.1873 against
+/// 0.1869, 0.1379 against 0.1383) at 1.1x the time per sample.
+const NEAR_SOLID_ANGLE: f32 = 0.5;
+
 impl AreaLight for Rect {
     fn radiance(&self) -> Vec3 {
         self.shape.radiance
@@ -58,14 +87,35 @@ impl AreaLight for Rect {
 
     fn sample(&self, p: Vec3, u: Vec2, choice: f32) -> Option<LightSample> {
         let s = &self.shape;
-        let q = s.corner + s.edge_u * u.x + s.edge_v * u.y;
-        area_sample(p, q, self.normal, self.area, s.radiance, choice)
+        let Some(r) = self.spherical(p) else {
+            let q = s.corner + s.edge_u * u.x + s.edge_v * u.y;
+            return area_sample(p, q, self.normal, self.area, s.radiance, choice);
+        };
+        // One-sided: nothing reaches points behind it.
+        if (p - s.corner).dot(self.normal) <= 0.0 {
+            return None;
+        }
+        let to = r.sample(u) - p;
+        let dist = to.length();
+        (dist > 0.0).then(|| LightSample {
+            wi: to / dist,
+            dist,
+            li: s.radiance,
+            pdf: choice / r.solid_angle(),
+            is_delta: false,
+        })
     }
 
     fn hit(&self, o: Vec3, d: Vec3) -> Option<(f32, f32)> {
         hit_plane(o, d, self.shape.corner, self.normal)
             .filter(|&(t, _)| self.contains(o + d * t))
-            .map(|(t, cos)| (t, area_pdf(1.0, t * t, cos, self.area)))
+            .map(|(t, cos)| {
+                let pdf = self.spherical(o).map_or_else(
+                    || area_pdf(1.0, t * t, cos, self.area),
+                    |r| 1.0 / r.solid_angle(),
+                );
+                (t, pdf)
+            })
     }
 
     fn bounds(&self, phi: f32) -> LightBounds {

@@ -534,3 +534,101 @@ fn auto_takes_the_bvh_from_its_light_count_on() {
         .1
         .uses_bvh());
 }
+
+/// The cosine warp of spherical triangle sampling: irradiance estimates from a large triangle that
+/// spans the horizon of the shading plane vary less than uniform solid-angle samples do (the
+/// warp's corner order decides this; measured 0.63x, and a wrong order raised the noise past the
+/// mean's tolerance).
+#[test]
+fn the_cosine_warp_lowers_the_variance_of_a_near_triangle() {
+    let v = [
+        Vec3::new(-1.5, 0.05, -1.0),
+        Vec3::new(1.5, 0.05, -1.0),
+        Vec3::new(0.0, 2.0, 0.3),
+    ];
+    let mesh = crate::scene::Mesh {
+        positions: v.to_vec(),
+        normals: vec![Vec3::Z; 3],
+        indices: vec![[0, 1, 2]],
+        ..Default::default()
+    };
+    let mut scene = crate::scene::generate::single_mesh_scene(mesh);
+    scene.materials[0].emissive = Vec3::ONE;
+    let set = LightSet::new(&scene);
+    let variance = |ctx: LightContext| {
+        let (mut s, mut s2, n) = (0.0f64, 0.0f64, 64);
+        for u in grid(n) {
+            let e = set.sample(&scene, &ctx, 0.5, u).map_or(0.0, |ls| {
+                (luminance(ls.li) * ls.wi.y.max(0.0) / ls.pdf) as f64
+            });
+            s += e;
+            s2 += e * e;
+        }
+        let m = s / (n * n) as f64;
+        (m, s2 / (n * n) as f64 - m * m)
+    };
+    let (warped, var_warped) = variance(AT_ORIGIN);
+    let (uniform, var_uniform) = variance(LightContext {
+        p: Vec3::ZERO,
+        n: Vec3::ZERO,
+    });
+    let expected = lambert_polygon(&v, 1.0);
+    for e in [warped, uniform] {
+        assert!((e - expected).abs() < 3e-3 * expected, "{e} vs {expected}");
+    }
+    assert!(
+        var_warped < 0.75 * var_uniform,
+        "variance {var_warped} warped, {var_uniform} uniform"
+    );
+}
+
+/// Sampling a rectangle by solid angle: from 0.3 below a 2 x 0.7 light, light-sampled irradiance
+/// estimates vary far less than uniform area samples of the same light do (measured: 0.034x the
+/// variance), and both average to the form factor's irradiance.
+#[test]
+fn a_near_rect_light_sampled_by_solid_angle_varies_less_than_by_area() {
+    let (l, h, a, b) = (1.0f32, 0.3f32, 2.0f32, 0.7f32);
+    let (corner, edge_u, edge_v) = (
+        Vec3::new(-a / 2.0, h, -b / 2.0),
+        Vec3::new(a, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, b),
+    );
+    let (scene, set) = lights_only(
+        vec![Light::Rect(RectLight {
+            corner,
+            edge_u,
+            edge_v,
+            radiance: Vec3::splat(l),
+        })],
+        LightSampler::Power,
+    );
+    let stats = |e: &mut dyn FnMut(Vec2) -> f64| {
+        let (mut s, mut s2, n) = (0.0f64, 0.0f64, 64);
+        for u in grid(n) {
+            let x = e(u);
+            s += x;
+            s2 += x * x;
+        }
+        let m = s / (n * n) as f64;
+        (m, s2 / (n * n) as f64 - m * m)
+    };
+    let (solid, var_solid) = stats(&mut |u| {
+        set.sample(&scene, &AT_ORIGIN, 0.5, u).map_or(0.0, |ls| {
+            (luminance(ls.li) * ls.wi.y.max(0.0) / ls.pdf) as f64
+        })
+    });
+    let (area, var_area) = stats(&mut |u| {
+        let q = corner + edge_u * u.x + edge_v * u.y;
+        let (d2, cos) = (q.length_squared() as f64, (q.y / q.length()) as f64);
+        l as f64 * cos * cos / d2 * (a * b) as f64
+    });
+    let expected =
+        PI64 * l as f64 * 4.0 * corner_form_factor(a as f64 / 2.0, b as f64 / 2.0, h as f64);
+    for e in [solid, area] {
+        assert!((e - expected).abs() < 3e-3 * expected, "{e} vs {expected}");
+    }
+    assert!(
+        var_solid < 0.1 * var_area,
+        "variance {var_solid} by solid angle, {var_area} by area"
+    );
+}

@@ -1,17 +1,21 @@
 //! Emissive triangles, two-sided, one entry per world-space triangle of each static emissive
-//! instance: sampled uniformly in the solid angle they subtend where that is large, by area where it
-//! is tiny; rays find them through the accelerators, so only their pdf is asked for on BSDF hits.
+//! instance: sampled in the solid angle they subtend where that is large (warped by the cosines at
+//! the shading point, as pbrt-v4 does), by area where it is tiny; rays find them through the
+//! accelerators, so only their pdf is asked for on BSDF hits.
 
 use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
-use super::area::{area_pdf, area_sample};
+use super::area::{area_pdf, area_sample, SPHERICAL_SOLID_ANGLES};
 use super::bounds::LightBounds;
-use super::LightSample;
+use super::{LightContext, LightSample};
 use crate::render::bsdf::luminance;
 use crate::render::surface::emission;
-use crate::sample::warp::{spherical_triangle, spherical_triangle_area, uniform_triangle};
+use crate::sample::warp::{
+    bilinear, bilinear_pdf, spherical_triangle, spherical_triangle_area,
+    spherical_triangle_inverse, uniform_triangle,
+};
 use crate::scene::{Material, Mesh, Scene};
 
 #[derive(Clone, Debug)]
@@ -40,11 +44,26 @@ impl Triangle {
         PI * self.area * mean_emission(scene, mat, mesh, self.prim)
     }
 
-    pub fn sample(&self, scene: &Scene, p: Vec3, u: Vec2, choice: f32) -> Option<LightSample> {
-        let v = &self.v;
+    pub fn sample(
+        &self,
+        scene: &Scene,
+        ctx: &LightContext,
+        u: Vec2,
+        choice: f32,
+    ) -> Option<LightSample> {
+        let (v, p) = (&self.v, ctx.p);
         let spherical = self.solid_angle(p);
+        let mut warp_pdf = 1.0;
         let (b1, b2) = match spherical {
-            Some((_, [a, b, c])) => self.barycentrics_along(p, spherical_triangle(a, b, c, u)?)?,
+            Some((_, corners)) => {
+                let mut u = u;
+                if let Some(w) = cosine_weights(ctx.n, corners) {
+                    u = bilinear(u, w);
+                    warp_pdf = bilinear_pdf(u, w);
+                }
+                let [a, b, c] = corners;
+                self.barycentrics_along(p, spherical_triangle(a, b, c, u)?)?
+            }
             None => uniform_triangle(u),
         };
         let q = v[0] * (1.0 - b1 - b2) + v[1] * b1 + v[2] * b2;
@@ -54,11 +73,11 @@ impl Triangle {
         if let Some((omega, _)) = spherical {
             let to = q - p;
             let dist = to.length();
-            return (dist > 0.0).then(|| LightSample {
+            return (dist > 0.0 && warp_pdf > 0.0).then(|| LightSample {
                 wi: to / dist,
                 dist,
                 li,
-                pdf: choice / omega,
+                pdf: choice * warp_pdf / omega,
                 is_delta: false,
             });
         }
@@ -77,10 +96,20 @@ impl Triangle {
         LightBounds::planar(v, n, phi, true)
     }
 
-    /// The solid-angle pdf, times `choice`, with which `sample` picks point `q` (normal `nq`) from `p`.
-    pub fn pdf(&self, choice: f32, p: Vec3, q: Vec3, nq: Vec3) -> f32 {
-        if let Some((omega, _)) = self.solid_angle(p) {
-            return choice / omega;
+    /// The solid-angle pdf, times `choice`, with which `sample` picks point `q` (normal `nq`) for
+    /// `ctx`.
+    pub fn pdf(&self, choice: f32, ctx: &LightContext, q: Vec3, nq: Vec3) -> f32 {
+        let p = ctx.p;
+        if let Some((omega, corners)) = self.solid_angle(p) {
+            let Some(w) = cosine_weights(ctx.n, corners) else {
+                return choice / omega;
+            };
+            let [a, b, c] = corners;
+            let warp_pdf = (q - p)
+                .try_normalize()
+                .and_then(|d| spherical_triangle_inverse(a, b, c, d))
+                .map_or(0.0, |u| bilinear_pdf(u, w));
+            return choice * warp_pdf / omega;
         }
         let to = q - p;
         let d2 = to.length_squared();
@@ -91,11 +120,6 @@ impl Triangle {
         area_pdf(choice, d2, cos_l, self.area)
     }
 }
-
-/// The solid angles (sr) between which emissive triangles are sampled by solid angle (pbrt-v4's
-/// bounds): below, area sampling is as good and the spherical warp loses precision; above, the
-/// triangle nearly fills a hemisphere and the warp's corner angles do.
-const SPHERICAL_SOLID_ANGLES: std::ops::RangeInclusive<f32> = 3e-4..=6.22;
 
 impl Triangle {
     /// The solid angle the triangle subtends from `p` and its unit corner directions, where it
@@ -123,6 +147,14 @@ impl Triangle {
         let b2 = (w.dot(s.cross(e1)) / div).clamp(0.0, 1.0 - b1);
         Some((b1, b2))
     }
+}
+
+/// The weights of the bilinear warp of the square before the spherical triangle map: the cosine
+/// at the shading point's normal `n` towards the corner each square corner maps to (b at u.y = 0,
+/// a and c at u.y = 1), kept above 0.01 so no direction becomes unreachable. None without a
+/// normal (a point in a medium, or none known).
+fn cosine_weights(n: Vec3, [a, b, c]: [Vec3; 3]) -> Option<[f32; 4]> {
+    (n != Vec3::ZERO).then(|| [b, b, a, c].map(|w| n.dot(w).abs().max(0.01)))
 }
 
 /// Barycentric points where a textured triangle's emission is probed: vertices, edge midpoints and
