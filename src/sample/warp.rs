@@ -123,20 +123,7 @@ pub fn spherical_triangle_area(a: Vec3, b: Vec3, c: Vec3) -> f32 {
 /// (Arvo 1995): `u.x` picks the sub-triangle of the right area, `u.y` the point along its arc; the
 /// pdf is one over `spherical_triangle_area`. None for a degenerate triangle.
 pub fn spherical_triangle(a: Vec3, b: Vec3, c: Vec3, u: Vec2) -> Option<Vec3> {
-    let (n_ab, n_bc, n_ca) = (
-        a.cross(b).try_normalize()?,
-        b.cross(c).try_normalize()?,
-        c.cross(a).try_normalize()?,
-    );
-    // The corner angles are between the planes of the edges meeting there.
-    let alpha = angle_between(n_ab, -n_ca);
-    let beta = angle_between(n_bc, -n_ab);
-    let gamma = angle_between(n_ca, -n_bc);
-    let area = alpha + beta + gamma - PI;
-    // Also refuses a NaN area.
-    if area.is_nan() || area <= 0.0 {
-        return None;
-    }
+    let (alpha, area, _) = arvo_angles(a, b, c)?;
     // The sub-triangle a, b, c' with area u.x * area: the angle at a stays alpha.
     let ap = PI + u.x * area;
     let (sin_ap, cos_ap) = ap.sin_cos();
@@ -156,20 +143,27 @@ pub fn spherical_triangle(a: Vec3, b: Vec3, c: Vec3, u: Vec2) -> Option<Vec3> {
     Some(cos_t * b + sin_t * (cp - b * cp.dot(b)).try_normalize()?)
 }
 
-/// The square point `spherical_triangle(a, b, c, u)` maps to direction `w` (pbrt-v4's inversion of
-/// Arvo's map): the sub-triangle a, b, c' through `w` gives `u.x` by its area, the arc from b to c'
-/// gives `u.y`. None for a degenerate triangle.
-pub fn spherical_triangle_inverse(a: Vec3, b: Vec3, c: Vec3, w: Vec3) -> Option<Vec2> {
+/// What Arvo's map and its inverse share: the angle at `a`, the area (from the corner angles,
+/// between the planes of the edges meeting there) and the unit normal of the plane through the
+/// origin, `a` and `b`; None for a degenerate triangle (also for a NaN area).
+fn arvo_angles(a: Vec3, b: Vec3, c: Vec3) -> Option<(f32, f32, Vec3)> {
     let (n_ab, n_bc, n_ca) = (
         a.cross(b).try_normalize()?,
         b.cross(c).try_normalize()?,
         c.cross(a).try_normalize()?,
     );
     let alpha = angle_between(n_ab, -n_ca);
-    let area = alpha + angle_between(n_bc, -n_ab) + angle_between(n_ca, -n_bc) - PI;
-    if area.is_nan() || area <= 0.0 {
-        return None;
-    }
+    let beta = angle_between(n_bc, -n_ab);
+    let gamma = angle_between(n_ca, -n_bc);
+    let area = alpha + beta + gamma - PI;
+    (!area.is_nan() && area > 0.0).then_some((alpha, area, n_ab))
+}
+
+/// The square point `spherical_triangle(a, b, c, u)` maps to direction `w` (pbrt-v4's inversion of
+/// Arvo's map): the sub-triangle a, b, c' through `w` gives `u.x` by its area, the arc from b to c'
+/// gives `u.y`. None for a degenerate triangle.
+pub fn spherical_triangle_inverse(a: Vec3, b: Vec3, c: Vec3, w: Vec3) -> Option<Vec2> {
+    let (alpha, area, n_ab) = arvo_angles(a, b, c)?;
     // c' is where the great circle through b and w meets the arc from a to c.
     let mut cp = b.cross(w).cross(c.cross(a)).try_normalize()?;
     if cp.dot(a + c) < 0.0 {
@@ -517,13 +511,16 @@ mod tests {
         }
     }
 
+    /// A triangle of unequal sides and angles, in front of the origin.
+    const LOPSIDED: [Vec3; 3] = [
+        Vec3::new(0.3, -0.2, 1.0),
+        Vec3::new(2.0, 0.4, 0.6),
+        Vec3::new(-0.5, 1.5, 0.9),
+    ];
+
     #[test]
     fn spherical_triangle_inverts() {
-        let v = [
-            Vec3::new(0.3, -0.2, 1.0),
-            Vec3::new(2.0, 0.4, 0.6),
-            Vec3::new(-0.5, 1.5, 0.9),
-        ];
+        let v = LOPSIDED;
         for p in [
             Vec3::ZERO,
             Vec3::new(0.2, 0.1, 0.75),
@@ -640,13 +637,9 @@ mod tests {
 
     #[test]
     fn spherical_triangle_integrates_like_area_sampling() {
-        // A lopsided triangle seen from the origin; the integral of a smooth f over its solid angle
+        // The lopsided triangle seen from the origin; the integral of a smooth f over its solid angle
         // by both samplers (f / pdf with the solid-angle pdf; f cos / d^2 / pdf_area by area).
-        let v = [
-            Vec3::new(0.3, -0.2, 1.0),
-            Vec3::new(2.0, 0.4, 0.6),
-            Vec3::new(-0.5, 1.5, 0.9),
-        ];
+        let v = LOPSIDED;
         let f = |w: Vec3| 1.0 + 3.0 * w.x * w.x + w.y;
         let [a, b, c] = v.map(|p| p.normalize());
         let omega = spherical_triangle_area(a, b, c) as f64;
