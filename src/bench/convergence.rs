@@ -623,18 +623,12 @@ impl Report {
             "mode", "param", "mean spp", "time s", "RMSE", "relMSE", "RMSE*", "relMSE*"
         );
         for r in &self.runs {
-            let _ = write!(s, "{:<18} {:>8}", r.mode, r.param);
-            // (width, decimals, in exponent form) of each figure.
-            let formats = [(9, 1, false), (9, 3, false), (10, 5, false), (11, 3, true)];
-            let formats = formats.iter().chain(&formats[2..]);
-            for (x, &(w, p, exp)) in r.figures().iter().zip(formats) {
-                let _ = if exp {
-                    write!(s, " {x:>w$.p$e}")
-                } else {
-                    write!(s, " {x:>w$.p$}")
-                };
-            }
-            s.push('\n');
+            let [spp, seconds, rmse, rel, rmse_t, rel_t] = r.figures();
+            let _ = writeln!(
+                s,
+                "{:<18} {:>8} {spp:>9.1} {seconds:>9.3} {rmse:>10.5} {rel:>11.3e} {rmse_t:>10.5} {rel_t:>11.3e}",
+                r.mode, r.param
+            );
         }
         let _ = writeln!(
             s,

@@ -36,14 +36,14 @@ impl Rect {
         }
     }
 
-    /// The rectangle as seen from `p`, where it is sampled by solid angle from there: where it
-    /// looks larger than `NEAR_SOLID_ANGLE` by its centre's distance and cosine.
+    /// The rectangle as seen from `p`, where it is sampled by solid angle from there: where `p`
+    /// is in front of it and it looks larger than `NEAR_SOLID_ANGLE` by its centre's distance and
+    /// cosine (points behind it are left to area sampling, which gives them nothing).
     fn spherical(&self, p: Vec3) -> Option<SphericalRectangle> {
         let s = &self.shape;
         let d = s.corner + 0.5 * (s.edge_u + s.edge_v) - p;
         let d2 = d.length_squared();
-        if !self.rectangular
-            || self.area * d.dot(self.normal).abs() < NEAR_SOLID_ANGLE * d2 * d2.sqrt()
+        if !self.rectangular || -self.area * d.dot(self.normal) < NEAR_SOLID_ANGLE * d2 * d2.sqrt()
         {
             return None;
         }
@@ -91,10 +91,6 @@ impl AreaLight for Rect {
             let q = s.corner + s.edge_u * u.x + s.edge_v * u.y;
             return area_sample(p, q, self.normal, self.area, s.radiance, choice);
         };
-        // One-sided: nothing reaches points behind it.
-        if (p - s.corner).dot(self.normal) <= 0.0 {
-            return None;
-        }
         let to = r.sample(u) - p;
         let dist = to.length();
         (dist > 0.0).then(|| LightSample {

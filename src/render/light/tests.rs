@@ -535,6 +535,16 @@ fn auto_takes_the_bvh_from_its_light_count_on() {
         .uses_bvh());
 }
 
+/// The mean and variance of one-sample estimates `e(u)` over a jittered 64 x 64 grid.
+fn mean_and_variance(e: impl Fn(Vec2) -> f64) -> (f64, f64) {
+    let n = 64 * 64;
+    let (s, s2) = grid(64)
+        .map(&e)
+        .fold((0.0, 0.0), |(s, s2), x| (s + x, s2 + x * x));
+    let m = s / n as f64;
+    (m, s2 / n as f64 - m * m)
+}
+
 /// The cosine warp of spherical triangle sampling: irradiance estimates from a large triangle that
 /// spans the horizon of the shading plane vary less than uniform solid-angle samples do (the
 /// warp's corner order decides this; measured 0.63x, and a wrong order raised the noise past the
@@ -556,16 +566,11 @@ fn the_cosine_warp_lowers_the_variance_of_a_near_triangle() {
     scene.materials[0].emissive = Vec3::ONE;
     let set = LightSet::new(&scene);
     let variance = |ctx: LightContext| {
-        let (mut s, mut s2, n) = (0.0f64, 0.0f64, 64);
-        for u in grid(n) {
-            let e = set.sample(&scene, &ctx, 0.5, u).map_or(0.0, |ls| {
+        mean_and_variance(|u| {
+            set.sample(&scene, &ctx, 0.5, u).map_or(0.0, |ls| {
                 (luminance(ls.li) * ls.wi.y.max(0.0) / ls.pdf) as f64
-            });
-            s += e;
-            s2 += e * e;
-        }
-        let m = s / (n * n) as f64;
-        (m, s2 / (n * n) as f64 - m * m)
+            })
+        })
     };
     let (warped, var_warped) = variance(AT_ORIGIN);
     let (uniform, var_uniform) = variance(LightContext {
@@ -602,22 +607,12 @@ fn a_near_rect_light_sampled_by_solid_angle_varies_less_than_by_area() {
         })],
         LightSampler::Power,
     );
-    let stats = |e: &mut dyn FnMut(Vec2) -> f64| {
-        let (mut s, mut s2, n) = (0.0f64, 0.0f64, 64);
-        for u in grid(n) {
-            let x = e(u);
-            s += x;
-            s2 += x * x;
-        }
-        let m = s / (n * n) as f64;
-        (m, s2 / (n * n) as f64 - m * m)
-    };
-    let (solid, var_solid) = stats(&mut |u| {
+    let (solid, var_solid) = mean_and_variance(|u| {
         set.sample(&scene, &AT_ORIGIN, 0.5, u).map_or(0.0, |ls| {
             (luminance(ls.li) * ls.wi.y.max(0.0) / ls.pdf) as f64
         })
     });
-    let (area, var_area) = stats(&mut |u| {
+    let (area, var_area) = mean_and_variance(|u| {
         let q = corner + edge_u * u.x + edge_v * u.y;
         let (d2, cos) = (q.length_squared() as f64, (q.y / q.length()) as f64);
         l as f64 * cos * cos / d2 * (a * b) as f64

@@ -53,17 +53,16 @@ impl Triangle {
     ) -> Option<LightSample> {
         let (v, p) = (&self.v, ctx.p);
         let spherical = self.solid_angle(p);
-        let mut warp_pdf = 1.0;
-        let (b1, b2) = match spherical {
-            Some((_, corners)) => {
-                let mut u = u;
-                if let Some(w) = cosine_weights(ctx.n, corners) {
-                    u = bilinear(u, w);
-                    warp_pdf = bilinear_pdf(u, w);
-                }
-                let [a, b, c] = corners;
-                self.barycentrics_along(p, spherical_triangle(a, b, c, u)?)?
+        let (u, warp_pdf) = match spherical.and_then(|(_, corners)| cosine_weights(ctx.n, corners))
+        {
+            Some(w) => {
+                let warped = bilinear(u, w);
+                (warped, bilinear_pdf(warped, w))
             }
+            None => (u, 1.0),
+        };
+        let (b1, b2) = match spherical {
+            Some((_, [a, b, c])) => self.barycentrics_along(p, spherical_triangle(a, b, c, u)?)?,
             None => uniform_triangle(u),
         };
         let q = v[0] * (1.0 - b1 - b2) + v[1] * b1 + v[2] * b2;
@@ -73,7 +72,7 @@ impl Triangle {
         if let Some((omega, _)) = spherical {
             let to = q - p;
             let dist = to.length();
-            return (dist > 0.0 && warp_pdf > 0.0).then(|| LightSample {
+            return (dist > 0.0).then(|| LightSample {
                 wi: to / dist,
                 dist,
                 li,
