@@ -13,7 +13,7 @@ use thiserror::Error;
 
 use crate::accel::Accel;
 use crate::film::aov::FeatureImages;
-use crate::film::denoise::{DenoiseError, DenoiseQuality, Denoiser};
+use crate::film::denoise::{DenoiseError, DenoiseOptions, Denoiser};
 use crate::film::{self, FilmError, Format, Image};
 use crate::geometry::mix64;
 use crate::geometry::Aabb;
@@ -313,8 +313,8 @@ pub struct Turntable {
     pub view: film::ViewTransform,
     /// Render frames whose file already exists again.
     pub overwrite: bool,
-    /// Denoise each frame (guided by its albedo and normal images) with this quality.
-    pub denoise: Option<DenoiseQuality>,
+    /// Denoise each frame (guided by its albedo and normal images) so.
+    pub denoise: Option<DenoiseOptions>,
 }
 
 /// One rendered frame: the image, the guides when asked for, and the rays it took.

@@ -7,7 +7,7 @@ mod common;
 use std::process::Command;
 
 use glint::accel::{self, Backend};
-use glint::film::denoise::{DenoiseQuality, Denoiser};
+use glint::film::denoise::{DenoiseOptions, Denoiser};
 use glint::render::{self, RenderSettings};
 
 #[test]
@@ -30,7 +30,7 @@ fn a_denoised_noisy_render_is_closer_to_the_reference_than_the_raw_one() {
     };
     let reference = render(256, 11).image;
     let noisy = render(4, 1);
-    let d = Denoiser::new(2, DenoiseQuality::High).unwrap();
+    let d = Denoiser::new(2, DenoiseOptions::default()).unwrap();
     let guides = noisy.features.as_ref().map(|f| f.guides());
     let denoised = d.denoise(&noisy.image, guides).unwrap();
     let plain = d.denoise(&noisy.image, None).unwrap();

@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 use indicatif::ProgressBar;
 
 use super::error::{BenchError, Result};
-use crate::film::denoise::{DenoiseQuality, Denoiser};
+use crate::film::denoise::{DenoiseOptions, Denoiser};
 use crate::film::filter::FilterKind;
 use crate::film::{self, Image};
 use crate::render::job::{Basics, JobOptions, Overrides, RenderJob};
@@ -41,9 +41,9 @@ pub struct ConvergenceConfig {
     /// Fraction of pixels with the largest errors left out of the trimmed metrics (fireflies, in a
     /// run or in the reference, otherwise dominate a mean of squares).
     pub trim: f64,
-    /// Also the uniform Sobol ladder denoised (guided by albedo and normal), at this quality; a run's
+    /// Also the uniform Sobol ladder denoised (guided by albedo and normal) so; a run's
     /// time includes the denoising.
-    pub denoise: Option<DenoiseQuality>,
+    pub denoise: Option<DenoiseOptions>,
 }
 
 impl Default for ConvergenceConfig {

@@ -20,6 +20,12 @@ pub enum BenchError {
     Film(#[from] FilmError),
     #[error(transparent)]
     Denoise(#[from] crate::film::denoise::DenoiseError),
+    #[error("{}: the reference is {}x{}, the render {}x{}", path.display(), got.0, got.1, want.0, want.1)]
+    ReferenceSize {
+        path: PathBuf,
+        got: (usize, usize),
+        want: (usize, usize),
+    },
     #[error("{0}: no triangles to trace")]
     NoTriangles(String),
     #[error("{0}: no triangles or CSG objects to trace")]

@@ -6,7 +6,7 @@ use glam::Vec3;
 
 use crate::accel::Backend;
 use crate::film::aov::FeatureImages;
-use crate::film::denoise::{DenoiseError, DenoiseQuality, Denoiser};
+use crate::film::denoise::{DenoiseError, DenoiseOptions, DenoiseQuality, Denoiser, GuideMode};
 use crate::film::{Display, Image, ViewTransform};
 use crate::render::job::{DefaultLights, LensOptions, Overrides, Time};
 use crate::scene::{GgxScattering, Layering, SceneChoice, UpAxis};
@@ -124,6 +124,9 @@ pub struct DenoiseArgs {
     /// The denoiser's speed/quality trade.
     #[arg(long, value_enum, default_value_t = DenoiseQuality::High, requires = "denoise")]
     pub denoise_quality: DenoiseQuality,
+    /// What the albedo and normal guides go through first.
+    #[arg(long, value_enum, default_value_t = GuideMode::default(), requires = "denoise")]
+    pub denoise_guides: GuideMode,
 }
 
 impl DenoiseArgs {
@@ -133,13 +136,22 @@ impl DenoiseArgs {
         if !self.denoise {
             return Ok(None);
         }
-        let d = Denoiser::new(threads.unwrap_or(0), self.denoise_quality).context("--denoise")?;
+        let d = Denoiser::new(threads.unwrap_or(0), self.options()).context("--denoise")?;
         Ok(Some(d))
     }
 
-    /// The quality to denoise with, if asked (an error at once when this build has no denoiser).
-    pub fn quality(&self) -> Option<DenoiseQuality> {
-        self.denoise.then_some(self.denoise_quality)
+    /// How to denoise, as the flags say.
+    fn options(&self) -> DenoiseOptions {
+        DenoiseOptions {
+            quality: self.denoise_quality,
+            guides: self.denoise_guides,
+            ..DenoiseOptions::default()
+        }
+    }
+
+    /// How to denoise, if asked.
+    pub fn asked(&self) -> Option<DenoiseOptions> {
+        self.denoise.then(|| self.options())
     }
 
     /// Fails when denoising is asked of a build without the denoiser.

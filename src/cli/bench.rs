@@ -70,6 +70,10 @@ pub struct DenoiseArgs {
     /// Timed repetitions per variant (the best is reported).
     #[arg(long, default_value_t = 3)]
     pub repeat: usize,
+    /// A converged EXR of the same scene and size (e.g. `glint render` at thousands of spp and
+    /// another seed): each result's relMSE against it is reported.
+    #[arg(long)]
+    pub reference: Option<PathBuf>,
 }
 
 #[derive(clap::Args, Debug)]
@@ -193,7 +197,7 @@ pub fn run(cmd: BenchCommand) -> Result<()> {
 
 fn convergence(a: ConvergenceArgs) -> Result<()> {
     use crate::bench::convergence::{self, ConvergenceConfig};
-    use crate::film::denoise::DenoiseQuality;
+    use crate::film::denoise::DenoiseOptions;
     let mut ladder = vec![1u32];
     while ladder.last().unwrap() * 2 <= a.max_spp.max(1) {
         ladder.push(ladder.last().unwrap() * 2);
@@ -216,7 +220,7 @@ fn convergence(a: ConvergenceArgs) -> Result<()> {
         adaptive_min_spp: a.adaptive_min_spp.max(1),
         adaptive_max_spp: a.adaptive_max_spp,
         corner_targets: a.corner_targets,
-        denoise: a.denoise.then_some(DenoiseQuality::High),
+        denoise: a.denoise.then(DenoiseOptions::default),
         ..Default::default()
     };
     let report = convergence::run(&a.input, &a.out, &config, !a.quiet)?;
@@ -263,8 +267,13 @@ fn denoise(a: DenoiseArgs) -> Result<()> {
         flags: Overrides::all(basics),
         ..JobOptions::default()
     };
-    let (settings, rows) = denoise::run(&a.input, &opts, a.threads, a.repeat)?;
-    super::print_out(&denoise::table(&a.input, &settings, a.threads, &rows))
+    let report = denoise::run(
+        &a.input,
+        &opts,
+        (a.threads, a.repeat),
+        a.reference.as_deref(),
+    )?;
+    super::print_out(&report.table(&a.input))
 }
 
 fn rays(a: RaysArgs) -> Result<()> {

@@ -282,7 +282,7 @@ fn render_frames(args: &TurntableArgs, plan: &Plan) -> Result<()> {
         exposure: args.common.exposure,
         view: args.common.view,
         overwrite: args.overwrite,
-        denoise: args.denoise.quality(),
+        denoise: args.denoise.asked(),
     };
     let progress = progress_bar(
         args.common.quiet,

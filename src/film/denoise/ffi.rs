@@ -4,7 +4,7 @@
 use std::ffi::{c_char, c_void, CStr};
 
 use super::oidn::{self, Device, Filter};
-use super::{DenoiseError, DenoiseQuality, Guides};
+use super::{DenoiseError, DenoiseOptions, DenoiseQuality, GuideMode, Guides};
 use crate::film::Image;
 
 /// The device's pending error, if any (reading it clears it).
@@ -107,10 +107,10 @@ fn execute(
     check(device, "denoising")
 }
 
-/// The denoised RGB (3 floats a pixel) of `color`, guided by the prefiltered `guides` if given.
+/// The denoised RGB (3 floats a pixel) of `color`, steered by `guides` if given.
 pub(super) fn run(
     device: Device,
-    (quality, prefilter): (DenoiseQuality, DenoiseQuality),
+    passes: DenoiseOptions,
     color: &Image,
     guides: Option<Guides>,
 ) -> Result<Vec<f32>, DenoiseError> {
@@ -120,15 +120,23 @@ pub(super) fn run(
     let mut out = vec![0.0f32; rgb.len()];
     let Some(g) = guides else {
         let images = [(c"color", rgb.as_mut_ptr()), (c"output", out.as_mut_ptr())];
-        execute(device, size, &images, &[(c"hdr", true)], quality)?;
+        execute(device, size, &images, &[(c"hdr", true)], passes.quality)?;
         return Ok(out);
     };
     let mut albedo = flat(&mut g.albedo.iter().map(|a| a.to_array()));
     let mut normal = flat(&mut g.normal.iter().map(|n| n.to_array()));
-    // Each guide cleaned by an RT filter of its own, in place, then trusted as noise-free.
-    for (name, buf) in [(c"albedo", &mut albedo), (c"normal", &mut normal)] {
-        let p = buf.as_mut_ptr();
-        execute(device, size, &[(name, p), (c"output", p)], &[], prefilter)?;
+    if passes.guides == GuideMode::Prefiltered {
+        // Each guide cleaned by an RT filter of its own, in place.
+        for (name, buf) in [(c"albedo", &mut albedo), (c"normal", &mut normal)] {
+            let p = buf.as_mut_ptr();
+            execute(
+                device,
+                size,
+                &[(name, p), (c"output", p)],
+                &[],
+                passes.prefilter,
+            )?;
+        }
     }
     let images = [
         (c"color", rgb.as_mut_ptr()),
@@ -136,7 +144,8 @@ pub(super) fn run(
         (c"normal", normal.as_mut_ptr()),
         (c"output", out.as_mut_ptr()),
     ];
-    let flags = [(c"hdr", true), (c"cleanAux", true)];
-    execute(device, size, &images, &flags, quality)?;
+    let clean = passes.guides != GuideMode::Noisy;
+    let flags = [(c"hdr", true), (c"cleanAux", clean)];
+    execute(device, size, &images, &flags, passes.quality)?;
     Ok(out)
 }

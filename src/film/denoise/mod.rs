@@ -1,5 +1,5 @@
 //! Denoising a finished image with Intel Open Image Denoise 2 (the `denoise` feature): the RT filter in
-//! HDR mode on the linear beauty, guided by albedo and normal images that are prefiltered first (`cleanAux`).
+//! HDR mode on the linear beauty, guided by albedo and normal images, prefiltered or as rendered.
 //!
 //! Without the feature the same API exists and `Denoiser::new` returns `DenoiseError::NotBuilt`, so
 //! callers report a clear error instead of failing to build or crashing.
@@ -38,6 +38,55 @@ pub enum DenoiseQuality {
     High,
 }
 
+/// What the guides go through before they steer the beauty's pass.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum GuideMode {
+    /// Each guide cleaned by an RT pass of its own, then declared noise-free (`cleanAux`): OIDN's
+    /// highest-quality pipeline, three passes (Blender's "Accurate" prefilter).
+    #[default]
+    Prefiltered,
+    /// As rendered, to the network trained on noisy guides: one pass, about the time of the colour
+    /// alone (Blender's "Fast").
+    Noisy,
+    /// As rendered but declared noise-free (`cleanAux` with no prefilter): one pass of the large
+    /// clean-guide network, right where only the pixel area varies what a pixel's samples see
+    /// first (no depth of field, motion blur, stochastic first lobe, or texture detail finer than
+    /// the samples resolve; Blender's "None").
+    Trusted,
+}
+
+/// How to denoise: the network's quality and what the guides go through.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DenoiseOptions {
+    pub quality: DenoiseQuality,
+    pub guides: GuideMode,
+    /// The quality of the guides' own cleaning passes (with `GuideMode::Prefiltered`): balanced by
+    /// default, which `glint bench denoise` measured at 64% of high's time for the whole guided
+    /// denoise and within 2% of its relMSE against a converged reference (fast gives balanced's
+    /// image in balanced's time).
+    pub prefilter: DenoiseQuality,
+}
+
+impl Default for DenoiseOptions {
+    fn default() -> Self {
+        Self {
+            quality: DenoiseQuality::High,
+            guides: GuideMode::Prefiltered,
+            prefilter: DenoiseQuality::Balanced,
+        }
+    }
+}
+
+impl DenoiseOptions {
+    /// The defaults at the network quality `quality`.
+    pub fn at(quality: DenoiseQuality) -> Self {
+        Self {
+            quality,
+            ..Self::default()
+        }
+    }
+}
+
 /// The guide images: per-pixel albedo and shading normal, as the beauty's samples saw them.
 #[derive(Clone, Copy, Debug)]
 pub struct Guides<'a> {
@@ -51,12 +100,7 @@ pub struct Denoiser {
     device: oidn::Device,
     #[cfg(not(feature = "denoise"))]
     never: std::convert::Infallible,
-    quality: DenoiseQuality,
-    /// The quality of the guides' own cleaning passes: balanced by default, which `glint bench
-    /// denoise` measured at 60% of high's time for the whole guided denoise (DamagedHelmet,
-    /// 1280x720, 2 threads: 15.7 s against 26.0 s) and 3.8e-4 of the image's mean from it (fast
-    /// gave the same image in the same time).
-    prefilter: DenoiseQuality,
+    options: DenoiseOptions,
 }
 
 impl Denoiser {
@@ -64,30 +108,22 @@ impl Denoiser {
     pub const AVAILABLE: bool = cfg!(feature = "denoise");
 
     /// A CPU device with `threads` worker threads (0: the library decides).
-    pub fn new(threads: usize, quality: DenoiseQuality) -> Result<Self, DenoiseError> {
+    pub fn new(threads: usize, options: DenoiseOptions) -> Result<Self, DenoiseError> {
         #[cfg(feature = "denoise")]
         {
             Ok(Self {
                 device: ffi::new_device(threads)?,
-                quality,
-                prefilter: DenoiseQuality::Balanced,
+                options,
             })
         }
         #[cfg(not(feature = "denoise"))]
         {
-            let _ = (threads, quality);
+            let _ = (threads, options);
             Err(DenoiseError::NotBuilt)
         }
     }
 
-    /// The same device with the guides cleaned at `prefilter` quality.
-    pub fn with_prefilter(mut self, prefilter: DenoiseQuality) -> Self {
-        self.prefilter = prefilter;
-        self
-    }
-
-    /// The denoised image (alpha kept from `color`); with `guides`, they are cleaned by their own
-    /// filter pass and then guide the beauty's (OIDN's recommended `cleanAux` pipeline).
+    /// The denoised image (alpha kept from `color`), steered by `guides` if given.
     pub fn denoise(&self, color: &Image, guides: Option<Guides>) -> Result<Image, DenoiseError> {
         let n = color.width * color.height;
         if let Some(g) = guides {
@@ -99,7 +135,7 @@ impl Denoiser {
         }
         #[cfg(feature = "denoise")]
         {
-            let rgb = ffi::run(self.device, (self.quality, self.prefilter), color, guides)?;
+            let rgb = ffi::run(self.device, self.options, color, guides)?;
             let mut out = color.clone();
             for (p, c) in out.pixels.iter_mut().zip(rgb.chunks_exact(3)) {
                 *p = glam::Vec4::new(c[0], c[1], c[2], p.w);
@@ -108,7 +144,7 @@ impl Denoiser {
         }
         #[cfg(not(feature = "denoise"))]
         {
-            let _ = (self.quality, self.prefilter);
+            let _ = self.options;
             match self.never {}
         }
     }
@@ -132,7 +168,7 @@ mod tests;
 mod not_built {
     #[test]
     fn a_build_without_the_feature_says_so() {
-        let err = super::Denoiser::new(1, super::DenoiseQuality::Fast)
+        let err = super::Denoiser::new(1, super::DenoiseOptions::default())
             .err()
             .unwrap();
         assert!(

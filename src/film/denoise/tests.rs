@@ -1,3 +1,4 @@
+use clap::ValueEnum;
 use glam::Vec3;
 
 use super::*;
@@ -39,33 +40,40 @@ fn pictures(w: usize, h: usize, noise: f32) -> (Image, Image, Vec<Vec3>, Vec<Vec
 #[test]
 fn denoising_brings_a_noisy_picture_closer_to_the_clean_one() {
     let (clean, noisy, albedo, normal) = pictures(96, 64, 0.6);
-    let d = Denoiser::new(2, DenoiseQuality::High).unwrap();
-    let plain = d.denoise(&noisy, None).unwrap();
-    let guided = d
-        .denoise(
-            &noisy,
-            Some(Guides {
-                albedo: &albedo,
-                normal: &normal,
-            }),
-        )
-        .unwrap();
+    let guides = Some(Guides {
+        albedo: &albedo,
+        normal: &normal,
+    });
+    let mut outs = vec![Denoiser::new(2, DenoiseOptions::default())
+        .unwrap()
+        .denoise(&noisy, None)
+        .unwrap()];
+    for mode in GuideMode::value_variants() {
+        let options = DenoiseOptions {
+            guides: *mode,
+            ..DenoiseOptions::default()
+        };
+        let d = Denoiser::new(2, options).unwrap();
+        outs.push(d.denoise(&noisy, guides).unwrap());
+    }
     let raw = noisy.rel_mse(&clean);
-    for out in [&plain, &guided] {
+    for out in &outs {
         assert!(!out.has_non_finite());
         // Not black (a wrong format code would give zeros and no error but a device error).
         assert!(out.mean_rgb() > 0.5 * clean.mean_rgb());
         let e = out.rel_mse(&clean);
         assert!(e < raw / 4.0, "denoised relMSE {e} vs raw {raw}");
     }
+    // The modes reach the library: declared-noisy and trusted guides pick different networks.
+    assert_ne!(outs[2].pixels, outs[3].pixels);
     // Alpha is kept.
-    assert!(guided.pixels.iter().all(|p| p.w == 1.0));
+    assert!(outs.iter().all(|o| o.pixels.iter().all(|p| p.w == 1.0)));
 }
 
 #[test]
 fn guides_of_the_wrong_size_are_refused() {
     let (_, noisy, albedo, _) = pictures(8, 8, 0.1);
-    let d = Denoiser::new(1, DenoiseQuality::Fast).unwrap();
+    let d = Denoiser::new(1, DenoiseOptions::at(DenoiseQuality::Fast)).unwrap();
     let short = vec![Vec3::Z; 3];
     let err = d
         .denoise(
