@@ -9,7 +9,7 @@ imports its Cycles add-on as the module `cycles`, and this script's folder is fi
     render_cycles.py MODEL OUT.exr --width W --height H --spp N --eye X,Y,Z --look-at X,Y,Z --fov DEG
               --bounces B [--threads 2] [--seed 1] [--world 1.0] [--distribution importer|GGX]
               [--tint importer|squared] [--absorption importer|spec] [--anisotropy importer|spec]
-              [--lights SPEC|COMPAT] [--report T.json]
+              [--lights SPEC|COMPAT] [--env MAP.exr] [--report T.json]
 
 Why each setting:
 - Unbiased: no sample clamping, no glossy filter, caustics on, light threshold 0, no adaptive
@@ -30,6 +30,10 @@ Why each setting:
   This sets Roughness and Anisotropic so that Blender's alpha_x, alpha_y are the spec's (where the
   ratio fits Blender's largest, 10) and links the UV map's tangent; unlinked inputs only.
 - `--lights COMPAT` reads 1 cd as 1 W/sr (glint's reading); SPEC divides by 683 lm/W.
+- `--env`: a lat-long map as the world instead of the constant, importance-sampled (Cycles' default
+  map resolution, the map's own size). Its centre column faces +X in glint and in Cycles; glint's
+  longitude runs one way about +Y, Cycles' may run the other, so a map symmetric about its centre
+  column is the same world in both.
 """
 import argparse
 import json
@@ -56,6 +60,7 @@ def parse_args():
     ap.add_argument("--absorption", default="importer", choices=["importer", "spec"])
     ap.add_argument("--anisotropy", default="importer", choices=["importer", "spec"])
     ap.add_argument("--lights", default="SPEC", choices=["SPEC", "COMPAT"])
+    ap.add_argument("--env", default="", help="lat-long EXR world (replaces --world)")
     ap.add_argument("--report", default="")
     return ap.parse_args()
 
@@ -203,6 +208,12 @@ def main():
     world.use_nodes = True
     world.node_tree.nodes["Background"].inputs["Color"].default_value = (a.world,) * 3 + (1.0,)
     world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
+    if a.env:
+        tex = world.node_tree.nodes.new("ShaderNodeTexEnvironment")
+        tex.image = bpy.data.images.load(os.path.abspath(a.env))
+        tex.image.colorspace_settings.name = "Linear Rec.709"
+        tex.interpolation = "Linear"
+        world.node_tree.links.new(tex.outputs["Color"], world.node_tree.nodes["Background"].inputs["Color"])
     scene.world = world
     setup_camera(scene, a.eye, a.look_at, a.fov)
     setup_render(scene, a)
