@@ -122,12 +122,23 @@ impl Triangle {
 
 impl Triangle {
     /// The solid angle the triangle subtends from `p` and its unit corner directions, where it
-    /// is sampled by solid angle.
+    /// is sampled by solid angle (where it looks larger than `NEAR_SOLID_ANGLE`).
     fn solid_angle(&self, p: Vec3) -> Option<(f32, [Vec3; 3])> {
+        // First a bound without trigonometry: the cap of the bounding sphere about the centroid,
+        // of solid angle 2 pi (1 - cos) <= pi r^2 / (d^2 - r^2).
+        let v = &self.v;
+        let centre = (v[0] + v[1] + v[2]) / 3.0;
+        let r2 = v
+            .map(|v| v.distance_squared(centre))
+            .into_iter()
+            .fold(0.0, f32::max);
+        let excess = centre.distance_squared(p) - r2;
+        if excess > 0.0 && PI * r2 < NEAR_SOLID_ANGLE * excess {
+            return None;
+        }
         let [a, b, c] = self.v.map(|v| (v - p).normalize_or_zero());
         let omega = spherical_triangle_area(a, b, c);
-        SPHERICAL_SOLID_ANGLES
-            .contains(&omega)
+        (omega >= NEAR_SOLID_ANGLE && SPHERICAL_SOLID_ANGLES.contains(&omega))
             .then_some((omega, [a, b, c]))
     }
 
@@ -147,6 +158,11 @@ impl Triangle {
         Some((b1, b2))
     }
 }
+
+/// Triangles that look smaller than this (sr) are sampled by area: on bunny-cornell (its ceiling light two triangles) the noise per sample was the same
+/// (0.205) as with solid-angle sampling from pbrt-v4's 3e-4 sr up, for 0.82x the time a sample
+/// (57.7 against 70.4 ms); with none sampled by solid angle it was 0.243.
+const NEAR_SOLID_ANGLE: f32 = 0.05;
 
 /// The weights of the bilinear warp of the square before the spherical triangle map: the cosine
 /// at the shading point's normal `n` towards the corner each square corner maps to (b at u.y = 0,
@@ -181,4 +197,59 @@ fn mean_emission(scene: &Scene, mat: &Material, mesh: &Mesh, prim: u32) -> f32 {
         .map(|&(b1, b2)| luminance(emission(scene, mat, mesh.uv_at(prim, b1, b2))))
         .sum();
     sum / EMISSION_PROBES.len() as f32
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The bounding-cap test only ever declines triangles that the exact solid angle would have
+    /// left to area sampling too (so it changes the cost, not the estimator).
+    #[test]
+    fn the_cheap_bound_declines_only_small_triangles() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut r = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
+        };
+        let (mut declined, mut spherical) = (0, 0);
+        for _ in 0..20_000 {
+            let centre = Vec3::new(r(), r(), r()) * 2.0;
+            let size = 0.05 + 0.5 * (r() + 1.0);
+            let v = [0; 3].map(|_| centre + Vec3::new(r(), r(), r()) * size);
+            let t = Triangle {
+                inst: 0,
+                prim: 0,
+                v,
+                area: 0.5 * (v[1] - v[0]).cross(v[2] - v[0]).length(),
+            };
+            let p = Vec3::new(r(), r(), r());
+            let exact = spherical_triangle_area(
+                (v[0] - p).normalize(),
+                (v[1] - p).normalize(),
+                (v[2] - p).normalize(),
+            );
+            match t.solid_angle(p) {
+                Some((omega, _)) => {
+                    spherical += 1;
+                    assert!(omega >= NEAR_SOLID_ANGLE);
+                }
+                None if SPHERICAL_SOLID_ANGLES.contains(&exact) => {
+                    declined += 1;
+                    assert!(
+                        exact < NEAR_SOLID_ANGLE,
+                        "declined {v:?} from {p}: {exact} sr"
+                    );
+                }
+                None => {}
+            }
+        }
+        // Both outcomes occur often enough for the check to mean something.
+        assert!(
+            declined > 1000 && spherical > 1000,
+            "{declined} {spherical}"
+        );
+    }
 }
