@@ -37,6 +37,22 @@ impl Bsdf {
         }
     }
 
+    /// The diffuse lobe's choice probability where the base is Lambert alone (no specular layer,
+    /// metal, transmission or thin film; and from this side no total internal reflection can turn
+    /// the zero-weight layer into a mirror), else None. Every other term is then exactly zero, so
+    /// eval and sample skip the Fresnel and microfacet work they would multiply by it, and give
+    /// the same bits (walls of OBJ scenes are mostly this).
+    pub(super) fn lambert_only(&self) -> Option<f32> {
+        let plain = self.specular == 0.0
+            && self.metallic == 0.0
+            && self.transmission == 0.0
+            && self.eta >= 1.0
+            && self.diffuse_transmission.is_none()
+            && self.iridescence.is_none();
+        let w = luminance(self.base);
+        (plain && w > 0.0).then(|| choice_probabilities([0.0, w, 0.0])[1])
+    }
+
     /// A thick surface between equal indices: rough or not, it refracts nothing (the microfacet
     /// half vector of Walter et al. degenerates there), so its transmission is a straight delta.
     fn index_matched(&self) -> bool {
@@ -194,6 +210,15 @@ impl Bsdf {
         if o.z <= 0.0 || i.z == 0.0 {
             return (Vec3::ZERO, 0.0);
         }
+        match self.lambert_only() {
+            Some(p) if i.z > 0.0 => (self.base * FRAC_1_PI, p * i.z * FRAC_1_PI),
+            Some(_) => (Vec3::ZERO, 0.0),
+            None => self.lobe_mix_eval(o, i),
+        }
+    }
+
+    /// `base_eval` through the whole lobe mix (for `o` above and `i` off the surface).
+    pub(super) fn lobe_mix_eval(&self, o: Vec3, i: Vec3) -> (Vec3, f32) {
         let lobes = self.lobes(o.z);
         let smooth = self.alpha == 0.0;
         let ggx = self.ggx();
@@ -296,6 +321,24 @@ impl Bsdf {
         if o.z <= 0.0 {
             return None;
         }
+        // Lambert alone: the diffuse lobe, unless u_lobe falls past its probability's rounding.
+        let Some(p) = self.lambert_only().filter(|&p| u_lobe < p) else {
+            return self.lobe_mix_sample(o, u_lobe, u);
+        };
+        let i = cosine_hemisphere(u);
+        let (f, pdf) = (self.base * FRAC_1_PI, p * i.z * FRAC_1_PI);
+        (i.z != 0.0 && pdf > 0.0 && f != Vec3::ZERO).then(|| BsdfSample {
+            wi: self.frame.to_world(i),
+            f,
+            pdf,
+            delta: false,
+            straight: false,
+            eta: 1.0,
+        })
+    }
+
+    /// `base_sample` through the whole lobe mix (for local `o` above the surface).
+    pub(super) fn lobe_mix_sample(&self, o: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         let lobes = self.lobes(o.z);
         let smooth = self.alpha == 0.0;
         let ggx = self.ggx();
@@ -354,7 +397,7 @@ impl Bsdf {
         if i.z == 0.0 || (pick_reflect && i.z < 0.0) || (pick_transmit && i.z > 0.0) {
             return None;
         }
-        let (f, pdf) = self.base_eval(o, i);
+        let (f, pdf) = self.lobe_mix_eval(o, i);
         // A diffusely transmitted ray crosses without refracting (no radiance scaling).
         let diffuse_through = !pick_reflect && !pick_transmit && i.z < 0.0;
         let eta = if i.z < 0.0 && !self.thin && !diffuse_through {

@@ -554,3 +554,36 @@ fn sheen_albedo_table_matches_integration() {
         }
     }
 }
+
+/// The Lambert-only shortcut of eval and sample (no specular layer, metal or transmission) gives
+/// the very bits of the full lobe mix, for smooth and rough roughness and both layerings; and a
+/// material with a specular layer does not take it.
+#[test]
+fn lambert_shortcut_gives_the_bits_of_the_full_lobe_mix() {
+    let frame = Frame::from_normal(Vec3::new(0.3, -0.2, 0.9).normalize());
+    let base = Vec3::new(0.7, 0.4, 0.2);
+    assert!(Bsdf::new(frame, base, 0.0, 0.5, 1.0)
+        .lambert_only()
+        .is_none());
+    for roughness in [0.0, 0.5, 1.0] {
+        for layering in [crate::scene::Layering::Spec, crate::scene::Layering::Albedo] {
+            let mut b = Bsdf::new(frame, base, 0.0, roughness, 0.0);
+            b.model.layering = layering;
+            assert!(b.lambert_only().is_some());
+            for k in 0..2000 {
+                let o = Vec3::new(hash(5 * k) - 0.5, hash(5 * k + 1) - 0.5, hash(5 * k + 4))
+                    .normalize();
+                let (u_lobe, u) = (hash(5 * k + 2), Vec2::new(hash(5 * k + 3), hash(k + 7)));
+                let fast = b.base_sample(frame.to_world(o), u_lobe, u);
+                let full = b.lobe_mix_sample(o, u_lobe, u);
+                assert_eq!(
+                    fast.map(|s| (s.wi, s.f, s.pdf)),
+                    full.map(|s| (s.wi, s.f, s.pdf))
+                );
+                for i in [o, -o, Vec3::new(-o.x, -o.y, o.z), Vec3::Z] {
+                    assert_eq!(b.base_eval(o, i), b.lobe_mix_eval(o, i), "{o} {i}");
+                }
+            }
+        }
+    }
+}
