@@ -30,6 +30,8 @@ pub struct Integrator<'a> {
     /// The scene has thin transmissive surfaces, which shadow rays pass through (decided once: scenes
     /// without them trace plain occlusion rays).
     pub thin_shadows: bool,
+    /// The scene has alpha-tested geometry, whose stochastic transparency reads the rays' seeds.
+    pub alpha_seeds: bool,
 }
 
 /// Radiance along one camera ray, its coverage (alpha), and how many rays it took.
@@ -55,6 +57,18 @@ impl<'a> Integrator<'a> {
             lights: LightSet::with_sampler(scene, light_sampler),
             max_depth,
             thin_shadows: features.thin_walls,
+            alpha_seeds: features.alpha,
+        }
+    }
+
+    /// The seed of stochastic transparency for the rays leaving `bounce`; without alpha-tested
+    /// geometry nothing reads it, so no sample is drawn (samplers are stateless per dimension, so
+    /// every other value stays the same).
+    fn alpha_seed(&self, sampler: &mut dyn Sampler, bounce: u32) -> u32 {
+        if self.alpha_seeds {
+            sampler.get_seed(bounce)
+        } else {
+            0
         }
     }
 
@@ -125,7 +139,7 @@ impl<'a> Integrator<'a> {
         sampler: &mut dyn Sampler,
         features: &mut PathFeatures,
     ) -> PathResult {
-        let mut ray = camera_ray.with_seed(sampler.get_seed(0));
+        let mut ray = camera_ray.with_seed(self.alpha_seed(sampler, 0));
         let mut l = Vec3::ZERO;
         let mut alpha = 1.0;
         let mut rays = 0;
@@ -169,7 +183,7 @@ impl<'a> Integrator<'a> {
             }
             let leave = Leave {
                 wo: -ray.d,
-                seed: sampler.get_seed(bounce + 1),
+                seed: self.alpha_seed(sampler, bounce + 1),
                 time: ray.time,
             };
             let nee = self.next_event::<THIN>(
