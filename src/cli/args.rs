@@ -117,8 +117,8 @@ impl Args {
 /// Denoising with Intel Open Image Denoise.
 #[derive(clap::Args, Debug, Default)]
 pub struct DenoiseArgs {
-    /// Denoise the image (Open Image Denoise's RT filter, HDR, guided by prefiltered albedo and
-    /// normal images taken at the first non-specular surface).
+    /// Denoise the image (Open Image Denoise's RT filter, HDR, guided by albedo and normal images
+    /// taken at the first non-specular surface, prefiltered unless --denoise-guides says otherwise).
     #[arg(long)]
     pub denoise: bool,
     /// The denoiser's speed/quality trade.
