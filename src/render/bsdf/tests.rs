@@ -587,3 +587,32 @@ fn lambert_shortcut_gives_the_bits_of_the_full_lobe_mix() {
         }
     }
 }
+
+/// Lobe choice: probabilities sum to one; zero weights are never chosen; lobes under the negligible
+/// share keep their bare proportion, the others their proportion mixed with a uniform tenth.
+#[test]
+fn choice_probabilities_boost_only_lobes_that_count() {
+    for w in [
+        [0.8, 0.2, 0.0],
+        [0.9, 0.001, 0.0],
+        [0.5, 0.005, 0.4],
+        [0.0, 1.0, 0.0],
+        [0.3, 0.3, 0.3],
+    ] {
+        let p = choice_probabilities(w);
+        let total: f32 = w.iter().sum();
+        assert!((p.iter().sum::<f32>() - 1.0).abs() < 1e-6, "{w:?}: {p:?}");
+        for (x, q) in w.iter().zip(p) {
+            if *x == 0.0 {
+                assert_eq!(q, 0.0);
+            } else if *x < NEGLIGIBLE_SHARE * total {
+                assert!((q - x / total).abs() < 1e-7, "{w:?}: {p:?}");
+            } else {
+                assert!(q > 0.9 * x / total, "{w:?}: {p:?}");
+            }
+        }
+    }
+    // All lobes counting: the plain mix.
+    let p = choice_probabilities([0.8, 0.2, 0.0]);
+    assert!((p[0] - (0.9 * 0.8 + 0.05)).abs() < 1e-6 && (p[1] - (0.9 * 0.2 + 0.05)).abs() < 1e-6);
+}
