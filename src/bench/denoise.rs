@@ -1,6 +1,6 @@
 //! `glint bench denoise`: what denoising one render costs, the colour alone and guided by albedo
-//! and normal, at each quality of the network and of the guides' prefilter passes (best of N wall
-//! times, the device made once), and how far each result is from the guided all-high one.
+//! and normal in each guide mode and network quality (best of N wall times, the device made once),
+//! how far each result is from the guided all-high one, and, given one, from a converged reference.
 
 use std::fmt::Write as _;
 use std::path::Path;

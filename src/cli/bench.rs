@@ -51,8 +51,9 @@ pub enum BenchCommand {
     /// What skipping unused features saves: a static, pinhole, opaque scene rendered as derived and
     /// with motion, lens and thin-wall machinery forced on (the same image; 320 x 240 unless told).
     Features(FeaturesArgs),
-    /// What denoising one render costs: the colour alone and guided by albedo and normal, at each
-    /// quality of the network and of the guides' cleaning (1280 x 720 unless told).
+    /// What denoising one render costs: the colour alone and guided by albedo and normal, in each
+    /// guide mode and network quality, with each result's error against --reference if given
+    /// (1280 x 720 unless told).
     Denoise(DenoiseArgs),
 }
 
