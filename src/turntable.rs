@@ -313,7 +313,7 @@ pub struct Turntable {
     pub view: film::ViewTransform,
     /// Render frames whose file already exists again.
     pub overwrite: bool,
-    /// Denoise each frame (guided by its albedo and normal images) so.
+    /// Denoise each frame, guided by its albedo and normal images, with these options.
     pub denoise: Option<DenoiseOptions>,
 }
 

@@ -173,7 +173,7 @@ def bunny_cornell(out):
 
 
 def helmet_env(out, width=512, height=256):
-    """A glTF scene: {gltf, env}; the sky written to `out`."""
+    """A glTF scene: {gltf, env} (main adds its camera as `view`); the sky written to `out`."""
     v = (np.arange(height) + 0.5) / height
     u = (np.arange(width) + 0.5) / width
     el = (0.5 - v)[:, None] * math.pi                      # +pi/2 at the top row
@@ -229,7 +229,7 @@ def glint_gltf(a, scene, out, seed, light_sampler=None):
     cmd = [a.glint, "render", str(scene["gltf"]), "-o", str(exr), "--width", str(a.width), "--height",
            str(a.height), "--spp", str(a.spp), "--max-depth", str(a.depth), "--seed", str(seed), "--filter", "box",
            "--threads", str(a.threads), "--default-lights", "off", "--env", str(scene["env"]), "--up", "0,1,0",
-           "--backend", "embree", *gltf_view(a, scene)]
+           "--backend", "embree", *scene["view"]]
     if light_sampler:
         cmd += ["--light-sampler", light_sampler]
     t = timed_glint(cmd)
@@ -300,7 +300,7 @@ def cycles_gltf(a, scene, out, seed):
     cmd = [a.bpy, str(HERE / "render_cycles.py"), str(scene["gltf"]), str(exr), "--width", str(a.width),
            "--height", str(a.height), "--spp", str(a.spp), "--bounces", str(a.depth - 1), "--threads",
            str(a.threads), "--seed", str(seed), "--distribution", "GGX", "--env", str(scene["env"]),
-           *gltf_view(a, scene)]
+           *scene["view"]]
     r = subprocess.run(cmd, capture_output=True, text=True)
     m = re.search(r'"render_s": ([0-9.]+)', r.stdout)
     if r.returncode != 0 or not m:
@@ -390,6 +390,8 @@ def main():
     out = Path(a.out).resolve()
     out.mkdir(parents=True, exist_ok=True)
     parts = SCENES[a.scene](out)
+    if isinstance(parts, dict):
+        parts["view"] = gltf_view(a, parts)  # `glint info` once, not per render
     renderers = {"glint": glint, "mitsuba": mitsuba, "cycles": cycles}
     rows = []
     for name in a.renderers.split(","):

@@ -41,8 +41,8 @@ pub struct ConvergenceConfig {
     /// Fraction of pixels with the largest errors left out of the trimmed metrics (fireflies, in a
     /// run or in the reference, otherwise dominate a mean of squares).
     pub trim: f64,
-    /// Also the uniform Sobol ladder denoised (guided by albedo and normal) so; a run's
-    /// time includes the denoising.
+    /// Also the uniform Sobol ladder denoised with these options (guided by albedo and normal); a
+    /// run's time includes the denoising.
     pub denoise: Option<DenoiseOptions>,
 }
 

@@ -18,9 +18,21 @@ use crate::render::RenderSettings;
 /// One way of denoising.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Variant {
-    pub options: DenoiseOptions,
-    /// Whether the albedo and normal guides are given (else the colour alone).
-    pub guided: bool,
+    pub quality: DenoiseQuality,
+    /// None: the colour alone.
+    pub guides: Option<GuideMode>,
+    /// The guides' cleaning passes' quality (with `GuideMode::Prefiltered`).
+    pub prefilter: DenoiseQuality,
+}
+
+impl Variant {
+    fn options(&self) -> DenoiseOptions {
+        DenoiseOptions {
+            quality: self.quality,
+            guides: self.guides.unwrap_or_default(),
+            prefilter: self.prefilter,
+        }
+    }
 }
 
 /// The variants measured: the colour alone, then guided in each way (prefiltered at fast gives
@@ -34,15 +46,9 @@ pub const VARIANTS: [Variant; 8] = {
         prefilter: DenoiseQuality,
     ) -> Variant {
         Variant {
-            options: DenoiseOptions {
-                quality,
-                guides: match guides {
-                    Some(g) => g,
-                    None => Prefiltered,
-                },
-                prefilter,
-            },
-            guided: guides.is_some(),
+            quality,
+            guides,
+            prefilter,
         }
     }
     [
@@ -113,8 +119,8 @@ pub fn run(
         .expect("feature images were asked for");
     let mut images: Vec<(Variant, f64, Image)> = Vec::new();
     for v in VARIANTS {
-        let d = Denoiser::new(threads, v.options)?;
-        let guides = v.guided.then(|| features.guides());
+        let d = Denoiser::new(threads, v.options())?;
+        let guides = v.guides.map(|_| features.guides());
         let mut best = f64::INFINITY;
         let mut image = None;
         for _ in 0..repeat.max(1) {
@@ -168,17 +174,17 @@ impl Report {
             "network", "guides", "seconds", "vs high/high", "relMSE"
         );
         for r in &self.rows {
-            let o = r.variant.options;
-            let guides = match (r.variant.guided, o.guides) {
-                (false, _) => "none".to_string(),
-                (true, GuideMode::Prefiltered) => format!("prefiltered {}", name(o.prefilter)),
-                (true, m) => name(m),
+            let v = &r.variant;
+            let guides = match v.guides {
+                None => "none".to_string(),
+                Some(GuideMode::Prefiltered) => format!("prefiltered {}", name(v.prefilter)),
+                Some(m) => name(m),
             };
             let rel_mse = r.rel_mse.map_or("-".to_string(), |e| format!("{e:.3e}"));
             let _ = writeln!(
                 s,
                 "{:<10} {:<20} {:>9.3} {:>14.2e} {:>11}",
-                name(o.quality),
+                name(v.quality),
                 guides,
                 r.seconds,
                 r.difference,

@@ -110,7 +110,7 @@ fn execute(
 /// The denoised RGB (3 floats a pixel) of `color`, steered by `guides` if given.
 pub(super) fn run(
     device: Device,
-    passes: DenoiseOptions,
+    options: DenoiseOptions,
     color: &Image,
     guides: Option<Guides>,
 ) -> Result<Vec<f32>, DenoiseError> {
@@ -120,12 +120,12 @@ pub(super) fn run(
     let mut out = vec![0.0f32; rgb.len()];
     let Some(g) = guides else {
         let images = [(c"color", rgb.as_mut_ptr()), (c"output", out.as_mut_ptr())];
-        execute(device, size, &images, &[(c"hdr", true)], passes.quality)?;
+        execute(device, size, &images, &[(c"hdr", true)], options.quality)?;
         return Ok(out);
     };
     let mut albedo = flat(&mut g.albedo.iter().map(|a| a.to_array()));
     let mut normal = flat(&mut g.normal.iter().map(|n| n.to_array()));
-    if passes.guides == GuideMode::Prefiltered {
+    if options.guides == GuideMode::Prefiltered {
         // Each guide cleaned by an RT filter of its own, in place.
         for (name, buf) in [(c"albedo", &mut albedo), (c"normal", &mut normal)] {
             let p = buf.as_mut_ptr();
@@ -134,7 +134,7 @@ pub(super) fn run(
                 size,
                 &[(name, p), (c"output", p)],
                 &[],
-                passes.prefilter,
+                options.prefilter,
             )?;
         }
     }
@@ -144,8 +144,8 @@ pub(super) fn run(
         (c"normal", normal.as_mut_ptr()),
         (c"output", out.as_mut_ptr()),
     ];
-    let clean = passes.guides != GuideMode::Noisy;
+    let clean = options.guides != GuideMode::Noisy;
     let flags = [(c"hdr", true), (c"cleanAux", clean)];
-    execute(device, size, &images, &flags, passes.quality)?;
+    execute(device, size, &images, &flags, options.quality)?;
     Ok(out)
 }

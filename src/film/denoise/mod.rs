@@ -77,16 +77,6 @@ impl Default for DenoiseOptions {
     }
 }
 
-impl DenoiseOptions {
-    /// The defaults at the network quality `quality`.
-    pub fn at(quality: DenoiseQuality) -> Self {
-        Self {
-            quality,
-            ..Self::default()
-        }
-    }
-}
-
 /// The guide images: per-pixel albedo and shading normal, as the beauty's samples saw them.
 #[derive(Clone, Copy, Debug)]
 pub struct Guides<'a> {

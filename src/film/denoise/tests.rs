@@ -73,7 +73,14 @@ fn denoising_brings_a_noisy_picture_closer_to_the_clean_one() {
 #[test]
 fn guides_of_the_wrong_size_are_refused() {
     let (_, noisy, albedo, _) = pictures(8, 8, 0.1);
-    let d = Denoiser::new(1, DenoiseOptions::at(DenoiseQuality::Fast)).unwrap();
+    let d = Denoiser::new(
+        1,
+        DenoiseOptions {
+            quality: DenoiseQuality::Fast,
+            ..DenoiseOptions::default()
+        },
+    )
+    .unwrap();
     let short = vec![Vec3::Z; 3];
     let err = d
         .denoise(
