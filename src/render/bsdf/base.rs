@@ -63,20 +63,45 @@ impl Bsdf {
     /// internal reflection reflects everything whatever the weight); with a specular colour, its
     /// strongest channel, which is what the layers below lose.
     fn fresnel_dielectric(&self, cos: f32) -> f32 {
-        let f = fresnel_exact(cos, self.eta);
-        let plain = if f >= 1.0 {
+        let plain = self.plain_fresnel_dielectric(cos);
+        if plain >= 1.0 {
             return 1.0;
-        } else if self.specular_color == Vec3::ONE {
-            self.specular * f
-        } else {
-            self.specular * self.tinted(f).max_element()
-        };
+        }
         match &self.iridescence {
             None => plain,
             Some(film) => {
                 let thin = self.specular * film.fresnel(cos, self.dielectric_f0()).max_element();
                 plain + (thin - plain) * film.factor
             }
+        }
+    }
+
+    /// Per channel, what a thin film leaves the layers below, relative to the scalar `1 - F` the
+    /// lobes are weighted by (None without a film). The film absorbs nothing, so what it does not
+    /// reflect of each channel goes on: `1 - F_rgb` with the film's own colours, as the spec's
+    /// fresnel_mix with the extension's RGB Fresnel and Cycles' thin film do (the specular
+    /// colour's share stays KHR_materials_specular's strongest channel).
+    fn film_share(&self, cos: f32) -> Option<Vec3> {
+        let film = self.iridescence.as_ref()?;
+        let plain = self.plain_fresnel_dielectric(cos);
+        let thin = self.specular * film.fresnel(cos, self.dielectric_f0());
+        let scalar = 1.0 - (plain + (thin.max_element() - plain) * film.factor);
+        if plain >= 1.0 || scalar <= 0.0 {
+            return Some(Vec3::ZERO);
+        }
+        let rgb = Vec3::ONE - Vec3::splat(plain).lerp(thin, film.factor);
+        Some(rgb.max(Vec3::ZERO) / scalar)
+    }
+
+    /// `fresnel_dielectric` without the film: 1 under total internal reflection.
+    fn plain_fresnel_dielectric(&self, cos: f32) -> f32 {
+        let f = fresnel_exact(cos, self.eta);
+        if f >= 1.0 {
+            1.0
+        } else if self.specular_color == Vec3::ONE {
+            self.specular * f
+        } else {
+            self.specular * self.tinted(f).max_element()
         }
     }
 
@@ -137,6 +162,16 @@ impl Bsdf {
                 }
                 (1.0 - e).max(0.0)
             }
+        }
+    }
+
+    /// `film_share` for the diffuse under the specular layer: under the spec's fresnel_mix, at the
+    /// microfacet cosine; none under albedo scaling, which (as Cycles' layering) takes the
+    /// strongest channel of the layer's albedo so that no channel gains energy.
+    fn diffuse_film(&self, oh: f32) -> Option<Vec3> {
+        match self.model.layering {
+            Layering::Spec => self.film_share(oh),
+            Layering::Albedo => None,
         }
     }
 
@@ -225,11 +260,14 @@ impl Bsdf {
         if i.z > 0.0 {
             let h = (o + i).normalize();
             let oh = o.dot(h).max(0.0);
-            let diffuse = self.base
+            let mut diffuse = self.base
                 * ((1.0 - self.metallic)
                     * (1.0 - self.transmission)
                     * self.diffuse_share(o.z, oh)
                     * FRAC_1_PI);
+            if let Some(film) = self.diffuse_film(oh) {
+                diffuse *= film;
+            }
             let mut f = diffuse;
             let mut pdf = lobes.diffuse * i.z * FRAC_1_PI;
             if let Some(dt) = &self.diffuse_transmission {
@@ -266,10 +304,13 @@ impl Bsdf {
         lobes: &Lobes,
     ) -> (Vec3, f32) {
         let h = (o + Vec3::new(i.x, i.y, -i.z)).normalize();
-        let weight = (1.0 - self.metallic)
-            * (1.0 - self.transmission)
-            * self.diffuse_share(o.z, o.dot(h).max(0.0));
-        let f = dt.eval(self.base, i) * weight;
+        let oh = o.dot(h).max(0.0);
+        let weight =
+            (1.0 - self.metallic) * (1.0 - self.transmission) * self.diffuse_share(o.z, oh);
+        let mut f = dt.eval(self.base, i) * weight;
+        if let Some(film) = self.diffuse_film(oh) {
+            f *= film;
+        }
         (
             f,
             lobes.diffuse * dt.pdf(dt.through_probability(self.base), i),
@@ -290,8 +331,12 @@ impl Bsdf {
             let m = Vec3::new(i.x, i.y, -i.z);
             let h = (o + m).normalize();
             let d = ggx.d(h);
-            let t = 1.0 - self.fresnel_dielectric(o.dot(h).max(0.0));
-            let f = tint * (t * d * ggx.g2(o, m) / (4.0 * o.z * m.z));
+            let oh = o.dot(h).max(0.0);
+            let t = 1.0 - self.fresnel_dielectric(oh);
+            let mut f = tint * (t * d * ggx.g2(o, m) / (4.0 * o.z * m.z));
+            if let Some(film) = self.film_share(oh) {
+                f *= film;
+            }
             let pdf = lobes.transmit * ggx.g1(o) * d / (4.0 * o.z);
             return (f, pdf);
         }
@@ -308,8 +353,11 @@ impl Bsdf {
         let denom = (ih + oh / eta) * (ih + oh / eta);
         let d = ggx.d(h);
         let t = 1.0 - self.fresnel_dielectric(oh);
-        let f =
+        let mut f =
             tint * (t * d * ggx.g2(o, i) * (ih * oh).abs() / (denom * o.z * i.z.abs() * eta * eta));
+        if let Some(film) = self.film_share(oh) {
+            f *= film;
+        }
         let pdf = lobes.transmit * ggx.g1(o) * d * oh / o.z * ih.abs() / denom;
         (f, pdf)
     }
@@ -359,7 +407,10 @@ impl Bsdf {
             return out(i, self.fresnel(o.z) / o.z, lobes.reflect, true, false, 1.0);
         }
         if (smooth || self.index_matched()) && pick_transmit {
-            let tint = self.base * ((1.0 - self.metallic) * self.transmission);
+            let mut tint = self.base * ((1.0 - self.metallic) * self.transmission);
+            if let Some(film) = self.film_share(o.z) {
+                tint *= film;
+            }
             let t = 1.0 - self.fresnel_dielectric(o.z);
             if self.thin {
                 return out(-o, tint * (t / o.z), lobes.transmit, true, true, 1.0);
@@ -415,8 +466,12 @@ impl Bsdf {
             return Vec3::ZERO;
         }
         let cos = self.frame.n.dot(wo).abs();
-        self.base
-            * ((1.0 - self.metallic) * self.transmission * (1.0 - self.fresnel_dielectric(cos)))
+        let through = self.base
+            * ((1.0 - self.metallic) * self.transmission * (1.0 - self.fresnel_dielectric(cos)));
+        match self.film_share(cos) {
+            Some(film) => through * film,
+            None => through,
+        }
     }
 }
 

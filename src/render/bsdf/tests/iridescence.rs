@@ -4,7 +4,7 @@
 
 use std::f64::consts::PI;
 
-use glam::{DVec3, Vec3};
+use glam::{DVec3, Vec2, Vec3};
 
 use super::{chi_square, hash, spec_specular_brdf};
 use crate::geometry::Frame;
@@ -227,5 +227,48 @@ fn iridescent_white_furnace_reflects_at_most_one() {
             "furnace iridescence metallic {metallic} roughness {rough} thickness {d}: {}",
             figures.join(", ")
         );
+    }
+}
+
+/// A smooth thin wall with a film absorbs nothing: per channel, what the film reflects and what
+/// passes straight through add up to 1 at every angle (the film's colours in reflection and their
+/// complement in transmission), by straight_transmittance and by sampling both delta lobes.
+#[test]
+fn iridescent_thin_wall_reflects_and_transmits_every_channel_wholly() {
+    let frame = Frame::from_normal(Vec3::Z);
+    for (factor, d) in [(1.0, 400.0), (0.6, 250.0), (1.0, 900.0)] {
+        let mut b =
+            Bsdf::new(frame, Vec3::ONE, 0.0, 0.0, 1.0).with_dielectric(1.0, 1.5, true, false);
+        b.iridescence = Some(film(factor, 1.33, d));
+        for cos in [1.0f32, 0.8, 0.5, 0.2] {
+            let wo = Vec3::new((1.0 - cos * cos).sqrt(), 0.0, cos);
+            let (mut reflected, mut through) = (None, None);
+            for k in 0..200 {
+                let Some(s) = b.sample(wo, hash(k), Vec2::ZERO) else {
+                    continue;
+                };
+                assert!(s.delta);
+                let lobes = b.lobes(cos);
+                let (p, slot) = if s.wi.z > 0.0 {
+                    (lobes.reflect, &mut reflected)
+                } else {
+                    (lobes.transmit, &mut through)
+                };
+                *slot = Some(s.f * s.wi.z.abs() / s.pdf * p);
+            }
+            let (r, t) = (reflected.unwrap(), through.unwrap());
+            let straight = b.straight_transmittance(wo);
+            assert!(
+                (straight - t).abs().max_element() < 1e-5,
+                "{straight} vs {t}"
+            );
+            let sum = r + t;
+            assert!(
+                (sum - Vec3::ONE).abs().max_element() < 1e-5,
+                "factor {factor} thickness {d} cos {cos}: reflected {r} + through {t} = {sum}"
+            );
+            // The film colours it: the channels differ (what a scalar 1 - max F would lose).
+            assert!(r.max_element() - r.min_element() > 1e-3, "{r}");
+        }
     }
 }
