@@ -6,7 +6,8 @@ they are beyond glint's own seed-to-seed noise. A bench, not a test (minutes per
     accuracy.py OUTDIR [MODEL ...] [--glint target/release/glint] [--bpy PYTHON_WITH_BPY]
                 [--spp 256] [--width 320] [--height 240] [--depth 8] [--fov 35]
                 [--distribution importer|GGX|MULTI_GGX] [--tint importer|squared]
-                [--absorption importer|spec] [--anisotropy importer|spec]
+                [--absorption importer|spec] [--anisotropy importer|spec] [--iridescence importer|thin-film|spec]
+                [--thin-walled importer|spec] [--strip KHR_materials_sheen ...]
                 [--glint-args '--layering albedo --ggx multi'] [--cycles-from OTHER_OUTDIR]
 
 --glint-args are added to both glint renders; --cycles-from reuses another run's cycles.exr per model
@@ -33,6 +34,7 @@ import shutil
 import struct
 import subprocess
 import sys
+import urllib.parse
 from pathlib import Path
 
 import numpy as np
@@ -57,27 +59,44 @@ def model_path(name):
     return None
 
 
-def with_default_material(src, dst):
-    """A GLB copy in which primitives without a material get an explicit empty one: glint gives
-    them glTF's default material, Blender's importer none (its own grey), which is not a shading
-    difference worth measuring."""
+def prepared(src, folder, strip=()):
+    """A copy of the model in `folder` that both renderers read. Primitives without a material get
+    an explicit empty one (glint gives them glTF's default material, Blender's importer none: its
+    own grey, not a shading difference worth measuring); material N is named "gltfN NAME" so that
+    the Cycles driver can find it (glTF names repeat); extensionsRequired is dropped (Blender's
+    importer refuses a file that requires an extension it lacks, KHR_materials_iridescence, which
+    the driver maps itself); the material extensions in `strip` are taken out. A .gltf's external
+    files are linked beside the copy."""
     data = src.read_bytes()
-    magic, _, _ = struct.unpack_from("<III", data, 0)
-    if magic != 0x46546C67:
-        return src
-    n = struct.unpack_from("<I", data, 12)[0]
-    doc = json.loads(data[20:20 + n])
+    glb = data[:4] == b"glTF"
+    n = struct.unpack_from("<I", data, 12)[0] if glb else len(data)
+    doc = json.loads(data[20:20 + n] if glb else data)
     missing = [p for m in doc.get("meshes", []) for p in m["primitives"] if "material" not in p]
-    if not missing:
-        return src
-    doc.setdefault("materials", []).append({"name": "gltf-default"})
-    for p in missing:
-        p["material"] = len(doc["materials"]) - 1
+    if missing:
+        doc.setdefault("materials", []).append({"name": "gltf-default"})
+        for p in missing:
+            p["material"] = len(doc["materials"]) - 1
+    for i, m in enumerate(doc.get("materials", [])):
+        m["name"] = f"gltf{i} {m.get('name', '')}".strip()
+        for ext in strip:
+            m.get("extensions", {}).pop(ext, None)
+    doc.pop("extensionsRequired", None)
     text = json.dumps(doc).encode()
+    if not glb:
+        for item in doc.get("buffers", []) + doc.get("images", []):
+            uri = item.get("uri", "")
+            link = folder / urllib.parse.unquote(uri)
+            if uri and not uri.startswith("data:") and not link.exists():
+                link.parent.mkdir(parents=True, exist_ok=True)
+                link.symlink_to((src.parent / urllib.parse.unquote(uri)).resolve())
+        dst = folder / "model.gltf"
+        dst.write_bytes(text)
+        return dst
     text += b" " * (-len(text) % 4)
     rest = data[20 + n:]
-    out = struct.pack("<III", magic, 2, 12 + 8 + len(text) + len(rest))
+    out = struct.pack("<III", 0x46546C67, 2, 12 + 8 + len(text) + len(rest))
     out += struct.pack("<II", len(text), 0x4E4F534A) + text + rest
+    dst = folder / "model.glb"
     dst.write_bytes(out)
     return dst
 
@@ -146,7 +165,7 @@ def run(cmd, log):
 def measure(a, name, path, out):
     d = out / name
     d.mkdir(parents=True, exist_ok=True)
-    path = with_default_material(path, d / "model.glb")
+    path = prepared(path, d, a.strip)
     b = bounds(a.glint, path)
     if b is None:
         return {"model": name, "error": "glint info gives no bounds"}
@@ -162,6 +181,7 @@ def measure(a, name, path, out):
     cmd = [a.bpy, str(HERE / "render_cycles.py"), str(path), str(d / "cycles.exr"), *size,
            "--bounces", str(a.depth - 1), *view, "--threads", "2", "--distribution", a.distribution,
            "--tint", a.tint, "--absorption", a.absorption, "--anisotropy", a.anisotropy,
+           "--iridescence", a.iridescence, "--thin-walled", a.thin_walled,
            "--report", str(d / "cycles.json"), "--lights", "COMPAT" if name in COMPAT_LIGHTS else "SPEC"]
     reuse = Path(a.cycles_from) / name / "cycles.exr" if a.cycles_from else None
     if reuse is not None and reuse.is_file():
@@ -182,7 +202,9 @@ def measure(a, name, path, out):
 def table(results, a):
     lines = [f"{a.width}x{a.height}, {a.spp} spp, glint --max-depth {a.depth} (Cycles {a.depth - 1} bounces), "
              f"distribution {a.distribution}, tint {a.tint}, absorption {a.absorption}, "
-             f"anisotropy {a.anisotropy}, glint args '{a.glint_args}'", "",
+             f"anisotropy {a.anisotropy}, iridescence {a.iridescence}, thin-walled {a.thin_walled}, "
+             f"glint args '{a.glint_args}'"
+             + (f", without {', '.join(a.strip)}" if a.strip else ""), "",
              "| model | glint/Cycles mean | rmad | glint noise | excess | within targets |",
              "|---|---|---|---|---|---|"]
     for r in results:
@@ -211,6 +233,10 @@ def main():
     ap.add_argument("--glint-args", default="")
     ap.add_argument("--cycles-from", default="")
     ap.add_argument("--tint", default="importer", choices=["importer", "squared"])
+    ap.add_argument("--iridescence", default="thin-film", choices=["importer", "thin-film", "spec"])
+    ap.add_argument("--thin-walled", default="importer", choices=["importer", "spec"])
+    ap.add_argument("--strip", action="append", default=[], metavar="EXTENSION",
+                    help="take this material extension out of the model for both renderers")
     ap.add_argument("--absorption", default="spec", choices=["importer", "spec"])
     a = ap.parse_args()
     out = Path(a.out)

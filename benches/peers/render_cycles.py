@@ -9,6 +9,7 @@ imports its Cycles add-on as the module `cycles`, and this script's folder is fi
     render_cycles.py MODEL OUT.exr --width W --height H --spp N --eye X,Y,Z --look-at X,Y,Z --fov DEG
               --bounces B [--threads 2] [--seed 1] [--world 1.0] [--distribution importer|GGX]
               [--tint importer|squared] [--absorption importer|spec] [--anisotropy importer|spec]
+              [--iridescence importer|thin-film|spec] [--thin-walled importer|spec]
               [--lights SPEC|COMPAT] [--env MAP.exr] [--report T.json]
 
 Why each setting:
@@ -29,6 +30,17 @@ Why each setting:
   tangent unlinked (Cycles' default tangent, not the mesh's) unless there is an anisotropy texture.
   This sets Roughness and Anisotropic so that Blender's alpha_x, alpha_y are the spec's (where the
   ratio fits Blender's largest, 10) and links the UV map's tangent; unlinked inputs only.
+- `--iridescence thin-film`: Blender 5.0's importer reads no KHR_materials_iridescence (and refuses
+  files that require it: give it a copy without extensionsRequired); this puts the extension's IOR
+  and thickness (mix(min, max, texture G), max without a texture) into the Principled BSDF's thin
+  film, the same Belcour-Barla model. Materials are found by name: make glTF names unique first.
+  `spec` also turns a metal of grey base colour c under a film into a black dielectric of IOR
+  (1 + sqrt c) / (1 - sqrt c): the extension takes a metal's base IOR so ("the extinction ... is
+  thus assumed to be 0.0"), Cycles' film over a metal a complex IOR.
+- `--thin-walled spec`: KHR_materials_transmission without KHR_materials_volume is a thin wall
+  ("really two surfaces back-to-back ... there is no average refraction"); Blender's Principled
+  BSDF has no thin-walled mode, so the importer refracts at each surface. This replaces the
+  transmission of such materials by the spec's thin-walled BTDF (see `thin_walled`).
 - `--lights COMPAT` reads 1 cd as 1 W/sr (glint's reading); SPEC divides by 683 lm/W.
 - `--env`: a lat-long map as the world instead of the constant, importance-sampled (Cycles' default
   map resolution, the map's own size). Its centre column faces +X in glint and in Cycles; glint's
@@ -39,6 +51,7 @@ import argparse
 import json
 import math
 import os
+import struct
 import sys
 import time
 
@@ -59,6 +72,8 @@ def parse_args():
     ap.add_argument("--tint", default="importer", choices=["importer", "squared"])
     ap.add_argument("--absorption", default="importer", choices=["importer", "spec"])
     ap.add_argument("--anisotropy", default="importer", choices=["importer", "spec"])
+    ap.add_argument("--iridescence", default="importer", choices=["importer", "thin-film", "spec"])
+    ap.add_argument("--thin-walled", default="importer", choices=["importer", "spec"])
     ap.add_argument("--lights", default="SPEC", choices=["SPEC", "COMPAT"])
     ap.add_argument("--env", default="", help="lat-long EXR world (replaces --world)")
     ap.add_argument("--report", default="")
@@ -145,6 +160,177 @@ def spec_anisotropy(materials):
     return changed
 
 
+def gltf_document(path):
+    """The JSON of a .gltf or .glb file and a reader of its images' bytes by image index."""
+    data = open(path, "rb").read()
+    if data[:4] == b"glTF":
+        n = struct.unpack_from("<I", data, 12)[0]
+        doc, chunk = json.loads(data[20:20 + n]), 20 + n
+        blob = data[chunk + 8:chunk + 8 + struct.unpack_from("<I", data, chunk)[0]] if chunk < len(data) else b""
+    else:
+        doc, blob = json.loads(data), b""
+
+    def image_bytes(i):
+        im = doc["images"][i]
+        if "bufferView" in im:
+            v = doc["bufferViews"][im["bufferView"]]
+            return blob[v.get("byteOffset", 0):v.get("byteOffset", 0) + v["byteLength"]]
+        return open(os.path.join(os.path.dirname(path), im["uri"]), "rb").read()
+    return doc, image_bytes
+
+
+def thin_film(materials, model, scratch, spec_metals):
+    # Blender's importer reads no KHR_materials_iridescence; Principled's thin film is the same
+    # Belcour-Barla model. thickness = mix(min, max, texture.g), max without a texture; the factor
+    # has no Blender input, so only factor 1 is mapped (others are reported, left as imported).
+    doc, image_bytes = gltf_document(model)
+    by_name = {m.name: (m, n) for m, n in principled(materials)}
+    changed, skipped = [], []
+    for i, g in enumerate(doc.get("materials", [])):
+        ext = g.get("extensions", {}).get("KHR_materials_iridescence")
+        found = by_name.get(g.get("name", ""))
+        if ext is None or found is None:
+            continue
+        m, n = found
+        if ext.get("iridescenceFactor", 0.0) != 1.0 or "iridescenceTexture" in ext:
+            skipped.append(m.name)
+            continue
+        lo, hi = ext.get("iridescenceThicknessMinimum", 100.0), ext.get("iridescenceThicknessMaximum", 400.0)
+        n.inputs["Thin Film IOR"].default_value = ext.get("iridescenceIor", 1.3)
+        n.inputs["Thin Film Thickness"].default_value = hi
+        tex = ext.get("iridescenceThicknessTexture")
+        if tex is not None:
+            import bpy
+            source = doc["textures"][tex["index"]]["source"]
+            file = os.path.join(scratch, f"iridescence{source}.png")
+            with open(file, "wb") as f:
+                f.write(image_bytes(source))
+            tree = m.node_tree
+            node = tree.nodes.new("ShaderNodeTexImage")
+            node.image = bpy.data.images.load(file)
+            node.image.colorspace_settings.name = "Non-Color"
+            uv = tree.nodes.new("ShaderNodeUVMap")
+            uv.uv_map = "UVMap" if tex.get("texCoord", 0) == 0 else f"UVMap.{tex['texCoord']:03d}"
+            tree.links.new(uv.outputs["UV"], node.inputs["Vector"])
+            split = tree.nodes.new("ShaderNodeSeparateColor")
+            tree.links.new(node.outputs["Color"], split.inputs["Color"])
+            ramp = tree.nodes.new("ShaderNodeMapRange")
+            ramp.inputs["To Min"].default_value, ramp.inputs["To Max"].default_value = lo, hi
+            tree.links.new(split.outputs["Green"], ramp.inputs["Value"])
+            tree.links.new(ramp.outputs["Result"], n.inputs["Thin Film Thickness"])
+        metal = n.inputs["Metallic"]
+        if spec_metals and not metal.is_linked and metal.default_value == 1.0 and not n.inputs["Base Color"].is_linked:
+            r, gr, b, _ = n.inputs["Base Color"].default_value
+            if r == gr == b:
+                # The extension's film over a metal takes the base's IOR as a real one from F0
+                # (Fresnel0ToIor, "the extinction ... is thus assumed to be 0.0"); Cycles' film
+                # over a metal uses a complex IOR. A black dielectric of that IOR is the spec's.
+                n.inputs["Metallic"].default_value = 0.0
+                n.inputs["IOR"].default_value = (1 + math.sqrt(r)) / (1 - math.sqrt(min(r, 0.999)))
+                n.inputs["Base Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+        changed.append(m.name)
+    return changed, skipped
+
+
+def source(tree, socket):
+    """What feeds an input: its link's socket, or a Value node holding its constant."""
+    if socket.is_linked:
+        return socket.links[0].from_socket
+    node = tree.nodes.new("ShaderNodeValue")
+    node.outputs[0].default_value = socket.default_value
+    return node.outputs[0]
+
+
+def thin_walled(materials, model):
+    # KHR_materials_transmission without KHR_materials_volume is thin-walled: "really two surfaces
+    # back-to-back ... there is no average refraction"; the importer makes a refracting interface
+    # of it. This builds the spec's BSDF: the Principled BSDF without transmission (its diffuse,
+    # specular and metal) mixed by transmission x (1 - metallic) with fresnel_mix(specular_btdf x
+    # base, specular_brdf): the Fresnel at N.V of the IOR (Cycles' Fresnel node) between a GGX
+    # refraction of IOR 1 tinted by the base colour (straight on, blurred by the roughness) and a
+    # white GGX reflection. Exact where metallic is 0 or 1.
+    doc, _ = gltf_document(model)
+    by_name = {m.name: (m, n) for m, n in principled(materials)}
+    changed = []
+    for g in doc.get("materials", []):
+        ext = g.get("extensions", {})
+        found = by_name.get(g.get("name", ""))
+        if "KHR_materials_transmission" not in ext or "KHR_materials_volume" in ext or found is None:
+            continue
+        m, n = found
+        tree = m.node_tree
+        out = next((o for o in tree.nodes if o.bl_idname == "ShaderNodeOutputMaterial"), None)
+        if out is None or not out.inputs["Surface"].is_linked:
+            continue
+        weight = source(tree, n.inputs["Transmission Weight"])
+        metal = source(tree, n.inputs["Metallic"])
+        for link in list(n.inputs["Transmission Weight"].links):
+            tree.links.remove(link)
+        n.inputs["Transmission Weight"].default_value = 0.0
+        rest = tree.nodes.new("ShaderNodeMath")
+        rest.operation, rest.inputs[0].default_value = "SUBTRACT", 1.0
+        tree.links.new(metal, rest.inputs[1])
+        share = tree.nodes.new("ShaderNodeMath")
+        share.operation = "MULTIPLY"
+        tree.links.new(weight, share.inputs[0])
+        tree.links.new(rest.outputs[0], share.inputs[1])
+        through = tree.nodes.new("ShaderNodeBsdfRefraction")
+        through.distribution = "GGX"
+        through.inputs["IOR"].default_value = 1.0
+        mirror = tree.nodes.new("ShaderNodeBsdfGlossy")
+        mirror.distribution = "GGX"
+        mirror.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+        for bsdf in (through, mirror):
+            rough = n.inputs["Roughness"]
+            if rough.is_linked:
+                tree.links.new(rough.links[0].from_socket, bsdf.inputs["Roughness"])
+            else:
+                bsdf.inputs["Roughness"].default_value = rough.default_value
+        base = n.inputs["Base Color"]
+        if base.is_linked:
+            tree.links.new(base.links[0].from_socket, through.inputs["Color"])
+        else:
+            through.inputs["Color"].default_value = base.default_value
+        # Cycles' Fresnel node takes 1 / IOR on back faces (a wall seen from inside a closed mesh
+        # would reflect totally); a thin wall has air on both sides, so hand it IOR's inverse there.
+        ior = n.inputs["IOR"].default_value
+        side = tree.nodes.new("ShaderNodeNewGeometry")
+        flip = tree.nodes.new("ShaderNodeMath")
+        flip.operation = "MULTIPLY_ADD"
+        tree.links.new(side.outputs["Backfacing"], flip.inputs[0])
+        flip.inputs[1].default_value, flip.inputs[2].default_value = 1.0 / ior - ior, ior
+        fresnel = tree.nodes.new("ShaderNodeFresnel")
+        tree.links.new(flip.outputs[0], fresnel.inputs["IOR"])
+        if n.inputs["Normal"].is_linked:
+            tree.links.new(n.inputs["Normal"].links[0].from_socket, fresnel.inputs["Normal"])
+            for bsdf in (through, mirror):
+                tree.links.new(n.inputs["Normal"].links[0].from_socket, bsdf.inputs["Normal"])
+        sheet = tree.nodes.new("ShaderNodeMixShader")
+        tree.links.new(fresnel.outputs[0], sheet.inputs[0])
+        tree.links.new(through.outputs[0], sheet.inputs[1])
+        tree.links.new(mirror.outputs[0], sheet.inputs[2])
+        both = tree.nodes.new("ShaderNodeMixShader")
+        tree.links.new(share.outputs[0], both.inputs[0])
+        tree.links.new(n.outputs["BSDF"], both.inputs[1])
+        tree.links.new(sheet.outputs[0], both.inputs[2])
+        alpha = n.inputs["Alpha"]
+        if alpha.is_linked or alpha.default_value < 1.0:
+            # The Principled BSDF's alpha would cut out only its own share: cut out the mix.
+            coverage = source(tree, alpha)
+            for link in list(alpha.links):
+                tree.links.remove(link)
+            alpha.default_value = 1.0
+            clear = tree.nodes.new("ShaderNodeBsdfTransparent")
+            cut = tree.nodes.new("ShaderNodeMixShader")
+            tree.links.new(coverage, cut.inputs[0])
+            tree.links.new(clear.outputs[0], cut.inputs[1])
+            tree.links.new(both.outputs[0], cut.inputs[2])
+            both = cut
+        tree.links.new(both.outputs[0], out.inputs["Surface"])
+        changed.append(m.name)
+    return changed
+
+
 def setup_camera(scene, eye, look_at, fov):
     """A camera at `eye` looking at `look_at` (glTF/OBJ coordinates, +Y up), vertical fov degrees."""
     import bpy
@@ -201,9 +387,16 @@ def main():
     if a.distribution != "importer":
         for _, n in principled(bpy.data.materials):
             n.distribution = a.distribution
+    # Thin walls first: they tint once per crossing in either reading, and squaring skips them
+    # once their transmission is rebuilt (weight 0 on the Principled BSDF).
+    thin = thin_walled(bpy.data.materials, a.model) if a.thin_walled == "spec" else []
     tinted = square_transmissive_tint(bpy.data.materials) if a.tint == "squared" else []
     absorbing = spec_absorption(bpy.data.materials) if a.absorption == "spec" else []
     aniso = spec_anisotropy(bpy.data.materials) if a.anisotropy == "spec" else []
+    film, film_skipped = ([], [])
+    if a.iridescence != "importer":
+        film, film_skipped = thin_film(bpy.data.materials, a.model, os.path.dirname(os.path.abspath(a.out)),
+                                       a.iridescence == "spec")
     world = bpy.data.worlds.new("peer")
     world.use_nodes = True
     world.node_tree.nodes["Background"].inputs["Color"].default_value = (a.world,) * 3 + (1.0,)
@@ -223,7 +416,8 @@ def main():
         "model": a.model, "blender": bpy.app.version_string, "render_s": time.time() - t0,
         "total_s": time.time() - t_start, "spp": a.spp, "bounces": a.bounces,
         "distribution": a.distribution, "tint_squared": tinted, "spec_absorption": absorbing,
-        "spec_anisotropy": aniso,
+        "spec_anisotropy": aniso, "thin_film": film, "thin_film_not_mapped": film_skipped,
+        "thin_walled": thin,
         "load_average": os.getloadavg()[0],
     }
     print(json.dumps(report))
