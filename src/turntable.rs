@@ -726,6 +726,7 @@ pub fn write_contact_sheet(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::PointLight;
 
     #[test]
     fn pattern_names_pad_to_the_run_of_hashes() {
@@ -806,16 +807,16 @@ mod tests {
             overwrite: false,
             denoise: None,
         };
-        let base = vec![Light::Point {
+        let base = vec![Light::Point(PointLight {
             position: Vec3::new(1.0, 5.0, 8.0),
             intensity: Vec3::ONE,
-        }];
+        })];
         let (cam, lights) = tt.view_at(&base, 1.0);
         // A quarter turn of the model: the camera goes a quarter turn the other way, to -X.
         let d = cam.position() - tt.orbit.center;
         assert!(d.x < -4.0 && d.z.abs() < 1e-4, "{d:?}");
         // The light keeps its place relative to the camera.
-        let Light::Point { position, .. } = lights[0] else {
+        let Light::Point(PointLight { position, .. }) = lights[0] else {
             unreachable!()
         };
         let rel0 = tt

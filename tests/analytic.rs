@@ -10,7 +10,8 @@ use glam::{Mat4, Vec3, Vec4};
 use glint::accel::Backend;
 use glint::render::{LightSampler, RenderSettings};
 use glint::scene::{
-    Camera, DiskLight, EnvMap, Instance, Light, Material, Mesh, RectLight, Scene, SphereLight,
+    Camera, DirectionalLight, DiskLight, EnvMap, Instance, Light, Material, Mesh, PointLight,
+    RectLight, Scene, SphereLight,
 };
 
 /// A 200 x 200 square in the y = 0 plane, of a pure Lambertian material with albedo `rho`.
@@ -63,10 +64,10 @@ fn lambertian_plane_under_a_point_light() {
     let (rho, intensity, h) = (0.6, 40.0, 2.5);
     let scene = lambert_plane(
         rho,
-        vec![Light::Point {
+        vec![Light::Point(PointLight {
             position: Vec3::new(0.0, h, 0.0),
             intensity: Vec3::splat(intensity),
-        }],
+        })],
     );
     let expected = rho * intensity / (PI * h * h);
     for backend in Backend::all_available() {
@@ -86,10 +87,10 @@ fn lambertian_plane_under_a_directional_light() {
     let theta = 0.6f32;
     let scene = lambert_plane(
         rho,
-        vec![Light::Directional {
+        vec![Light::Directional(DirectionalLight {
             direction: -Vec3::new(theta.sin(), theta.cos(), 0.0),
             irradiance: Vec3::splat(irradiance),
-        }],
+        })],
     );
     let expected = rho / PI * irradiance * theta.cos();
     for backend in Backend::all_available() {

@@ -13,7 +13,7 @@ use glint::accel::Backend;
 use glint::render::RenderSettings;
 use glint::scene::features::Features;
 use glint::scene::{
-    AlphaMode, Camera, Instance, Light, Material, Mesh, Scene, TexRef, Texture, Wrap,
+    AlphaMode, Camera, Instance, Light, Material, Mesh, PointLight, Scene, TexRef, Texture, Wrap,
 };
 
 /// A horizontal square of half-size `s` at height `y`, facing up.
@@ -63,10 +63,10 @@ fn pane_scene(pane: Material, textures: Vec<Texture>) -> Arc<Scene> {
         ],
         materials: vec![floor, pane],
         textures,
-        lights: vec![Light::Point {
+        lights: vec![Light::Point(PointLight {
             position: Vec3::new(0.0, 2.5, 0.0),
             intensity: Vec3::splat(40.0),
-        }],
+        })],
         ..Default::default()
     })
 }

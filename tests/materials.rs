@@ -14,7 +14,7 @@ use glint::geometry::Frame;
 use glint::render::bsdf::Bsdf;
 use glint::render::RenderSettings;
 use glint::scene::generate::icosphere;
-use glint::scene::{Camera, Instance, Light, Material, Mesh, Scene};
+use glint::scene::{Camera, Instance, Light, Material, Mesh, PointLight, Scene};
 
 /// A unit icosphere with flat facets: its shading normals are the true ones, so no path is lost to
 /// the disagreement of interpolated and geometric normals (which is not what these tests measure).
@@ -322,10 +322,10 @@ fn thin_glass_pane_passes_direct_light() {
             quad(Vec3::new(0.0, 1.0, 0.0), Vec3::Y, 100.0, 1),
         ],
         vec![floor, pane],
-        vec![Light::Point {
+        vec![Light::Point(PointLight {
             position: Vec3::new(0.0, h, 0.0),
             intensity: Vec3::splat(intensity),
-        }],
+        })],
     );
     let camera = Camera::look_at(Vec3::new(0.0, 2.0, 0.0), Vec3::ZERO, Vec3::Z, 1e-3);
     let img = render(&scene, &camera, 5, 256, 3);

@@ -8,7 +8,7 @@
 use glam::{Mat4, Vec3, Vec4};
 
 use super::animation::{Animation, Curve};
-use super::{AlphaMode, Light, Projection, Scene};
+use super::{AlphaMode, DirectionalLight, Light, PointLight, Projection, Scene, SpotLight};
 
 /// A material factor glint renders, by its glTF name.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -201,27 +201,18 @@ fn apply_material(mat: &mut super::Material, m: &AnimatedMaterial, t: f32) {
 /// A punctual light with its intensity (W/sr, or irradiance for a directional light) set.
 fn with_power(light: Light, power: Vec3) -> Light {
     match light {
-        Light::Point { position, .. } => Light::Point {
-            position,
+        Light::Point(l) => Light::Point(PointLight {
             intensity: power,
-        },
-        Light::Spot {
-            position,
-            direction,
-            cos_inner,
-            cos_outer,
-            ..
-        } => Light::Spot {
-            position,
-            direction,
+            ..l
+        }),
+        Light::Spot(l) => Light::Spot(SpotLight {
             intensity: power,
-            cos_inner,
-            cos_outer,
-        },
-        Light::Directional { direction, .. } => Light::Directional {
-            direction,
+            ..l
+        }),
+        Light::Directional(l) => Light::Directional(DirectionalLight {
             irradiance: power,
-        },
+            ..l
+        }),
         other => other,
     }
 }

@@ -3,7 +3,7 @@
 
 use glam::{Mat4, Vec3};
 
-use super::{Camera, Light, Scene};
+use super::{Camera, DirectionalLight, Light, Scene};
 use crate::geometry::Aabb;
 
 /// Default vertical field of view of the framing camera, in degrees.
@@ -110,10 +110,10 @@ pub fn light_rig(camera_to_world: &Mat4) -> Vec<Light> {
             radiance: Vec3::splat(ENVIRONMENT_RADIANCE),
             map: None,
         },
-        Light::Directional {
+        Light::Directional(DirectionalLight {
             direction: -towards_light,
             irradiance: Vec3::splat(KEY_IRRADIANCE),
-        },
+        }),
     ]
 }
 

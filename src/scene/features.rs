@@ -71,12 +71,9 @@ impl Features {
                     Light::Sphere { .. } | Light::Disk { .. } | Light::Rect { .. }
                 )
             }),
-            punctual_lights: lights.iter().any(|l| {
-                matches!(
-                    l,
-                    Light::Point { .. } | Light::Spot { .. } | Light::Directional { .. }
-                )
-            }),
+            punctual_lights: lights
+                .iter()
+                .any(|l| matches!(l, Light::Point(_) | Light::Spot(_) | Light::Directional(_))),
             environment: lights
                 .iter()
                 .any(|l| matches!(l, Light::Environment { .. })),

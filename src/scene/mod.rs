@@ -266,24 +266,9 @@ impl Material {
 /// no shadow on each other or on the scene. Radiance is linear RGB in W/(m^2 sr).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Light {
-    /// Intensity in W/sr (glTF candela), linear RGB.
-    Point {
-        position: Vec3,
-        intensity: Vec3,
-    },
-    Spot {
-        position: Vec3,
-        /// The direction the light points to (unit).
-        direction: Vec3,
-        intensity: Vec3,
-        cos_inner: f32,
-        cos_outer: f32,
-    },
-    /// Irradiance (glTF lux) on a surface facing the light; `direction` is where the light travels to.
-    Directional {
-        direction: Vec3,
-        irradiance: Vec3,
-    },
+    Point(PointLight),
+    Spot(SpotLight),
+    Directional(DirectionalLight),
     Sphere(SphereLight),
     Disk(DiskLight),
     Rect(RectLight),
@@ -295,8 +280,35 @@ pub enum Light {
     },
 }
 
-/// A sphere emitting `radiance` outwards from every point of its surface. The analytic area lights
-/// are structs so that the renderer holds the scene's value rather than a copy of its fields.
+/// A point emitting `intensity` in W/sr (glTF candela, linear RGB) in every direction. Every light
+/// but the environment is a struct, so that the renderer holds the scene's value rather than a copy
+/// of its fields.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointLight {
+    pub position: Vec3,
+    pub intensity: Vec3,
+}
+
+/// A point light limited to a cone about its unit `direction` (where it points to), fading from
+/// full at `cos_inner` to nothing at `cos_outer`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpotLight {
+    pub position: Vec3,
+    pub direction: Vec3,
+    pub intensity: Vec3,
+    pub cos_inner: f32,
+    pub cos_outer: f32,
+}
+
+/// Light from infinitely far: `irradiance` (glTF lux) on a surface facing it, travelling along the
+/// unit `direction`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DirectionalLight {
+    pub direction: Vec3,
+    pub irradiance: Vec3,
+}
+
+/// A sphere emitting `radiance` outwards from every point of its surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SphereLight {
     pub center: Vec3,
@@ -347,10 +359,10 @@ impl Light {
             ),
             _ => return None,
         };
-        Some(Light::Point {
+        Some(Light::Point(PointLight {
             position,
             intensity: radiance * area,
-        })
+        }))
     }
 
     /// The light moved by an affine transform: positions as points, directions as vectors (renormalised),
@@ -397,33 +409,19 @@ impl Light {
                     std::sync::Arc::new(e)
                 }),
             },
-            Light::Point {
-                position,
-                intensity,
-            } => Light::Point {
-                position: m.transform_point3(position),
-                intensity,
-            },
-            Light::Spot {
-                position,
-                direction,
-                intensity,
-                cos_inner,
-                cos_outer,
-            } => Light::Spot {
-                position: m.transform_point3(position),
-                direction: dir(direction),
-                intensity,
-                cos_inner,
-                cos_outer,
-            },
-            Light::Directional {
-                direction,
-                irradiance,
-            } => Light::Directional {
-                direction: dir(direction),
-                irradiance,
-            },
+            Light::Point(l) => Light::Point(PointLight {
+                position: m.transform_point3(l.position),
+                ..l
+            }),
+            Light::Spot(l) => Light::Spot(SpotLight {
+                position: m.transform_point3(l.position),
+                direction: dir(l.direction),
+                ..l
+            }),
+            Light::Directional(l) => Light::Directional(DirectionalLight {
+                direction: dir(l.direction),
+                ..l
+            }),
         }
     }
 }

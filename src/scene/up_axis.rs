@@ -60,7 +60,7 @@ impl Scene {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{Instance, Light};
+    use crate::scene::{Instance, Light, PointLight};
     use glam::Vec3;
 
     #[test]
@@ -91,10 +91,10 @@ mod tests {
             ],
         });
         s.instances.push(inst);
-        s.lights.push(Light::Point {
+        s.lights.push(Light::Point(PointLight {
             position: Vec3::new(0.0, 0.0, 5.0),
             intensity: Vec3::ONE,
-        });
+        }));
         s.cameras.push(crate::scene::Camera::look_at(
             Vec3::new(0.0, -5.0, 0.0),
             Vec3::ZERO,
@@ -110,7 +110,7 @@ mod tests {
         let steps = &s.instances[0].motion.as_ref().unwrap().steps;
         assert!((at(steps[1]) - Vec3::new(0.0, 4.0, 0.0)).length() < 1e-6);
         match s.lights[0] {
-            Light::Point { position, .. } => {
+            Light::Point(PointLight { position, .. }) => {
                 assert!((position - Vec3::new(0.0, 5.0, 0.0)).length() < 1e-6)
             }
             ref l => panic!("{l:?}"),

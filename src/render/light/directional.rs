@@ -4,15 +4,15 @@
 use glam::Vec3;
 
 use crate::render::bsdf::luminance;
+use crate::scene::DirectionalLight;
 
-/// Direction towards the light, infinite distance and the irradiance it brings; `direction` is where
-/// the light travels to.
-pub(super) fn sample(direction: Vec3, irradiance: Vec3) -> (Vec3, f32, Vec3) {
-    (-direction.normalize(), f32::INFINITY, irradiance)
+/// Direction towards the light, infinite distance and the irradiance it brings.
+pub(super) fn sample(l: &DirectionalLight) -> (Vec3, f32, Vec3) {
+    (-l.direction.normalize(), f32::INFINITY, l.irradiance)
 }
 
 /// The light's weight among the lights: the luminance of its flux through `far_disk`, the area of
 /// the scene's bounding disk.
-pub(super) fn power(irradiance: Vec3, far_disk: f32) -> f32 {
-    far_disk * luminance(irradiance)
+pub(super) fn power(l: &DirectionalLight, far_disk: f32) -> f32 {
+    far_disk * luminance(l.irradiance)
 }

@@ -31,7 +31,7 @@ pub use distribution::{Distribution1D, Distribution2D};
 
 use crate::geometry::Ray;
 use crate::sample::mis::power_heuristic;
-use crate::scene::{Light, Scene};
+use crate::scene::{DirectionalLight, Light, PointLight, Scene, SpotLight};
 use area::AreaLight;
 use bounds::LightBounds;
 use bvh::LightBvh;
@@ -42,8 +42,9 @@ use triangle::Triangle;
 
 #[derive(Clone, Debug)]
 enum Entry {
-    /// Point, spot and directional lights, as the scene gives them.
-    Punctual(Light),
+    Point(PointLight),
+    Spot(SpotLight),
+    Directional(DirectionalLight),
     Triangle(Triangle),
     Sphere(crate::scene::SphereLight),
     Disk(Disk),
@@ -55,17 +56,10 @@ impl Entry {
     /// The entry of a scene light and its weight (power) among the lights; `far_disk` is the area of
     /// the scene's bounding disk, through which lights at infinity send their flux.
     fn of_light(l: &Light, far_disk: f32) -> (Self, f32) {
-        let punctual = || Entry::Punctual(l.clone());
         match l {
-            Light::Point { intensity, .. } => (punctual(), point::power(*intensity)),
-            Light::Spot {
-                intensity,
-                cos_outer,
-                ..
-            } => (punctual(), spot::power(*intensity, *cos_outer)),
-            Light::Directional { irradiance, .. } => {
-                (punctual(), directional::power(*irradiance, far_disk))
-            }
+            Light::Point(l) => (Entry::Point(*l), point::power(l)),
+            Light::Spot(l) => (Entry::Spot(*l), spot::power(l)),
+            Light::Directional(l) => (Entry::Directional(*l), directional::power(l, far_disk)),
             Light::Sphere(s) => (Entry::Sphere(*s), s.power()),
             Light::Disk(d) => {
                 let d = Disk::new(*d);
@@ -86,17 +80,9 @@ impl Entry {
     /// The bounds of the entry's emission, of power `phi`; `None` for lights at infinity.
     fn bounds(&self, phi: f32) -> Option<LightBounds> {
         match self {
-            Entry::Punctual(Light::Point { position, .. }) => Some(point::bounds(*position, phi)),
-            Entry::Punctual(Light::Spot {
-                position,
-                direction,
-                cos_inner,
-                cos_outer,
-                ..
-            }) => Some(spot::bounds(
-                *position, *direction, *cos_inner, *cos_outer, phi,
-            )),
-            Entry::Punctual(_) | Entry::Environment(_) => None,
+            Entry::Point(l) => Some(point::bounds(l, phi)),
+            Entry::Spot(l) => Some(spot::bounds(l, phi)),
+            Entry::Directional(_) | Entry::Environment(_) => None,
             Entry::Triangle(t) => Some(t.bounds(phi)),
             Entry::Sphere(s) => Some(s.bounds(phi)),
             Entry::Disk(d) => Some(d.bounds(phi)),
@@ -216,7 +202,7 @@ impl LightSet {
             let w = if w.is_finite() { w.max(0.0) } else { 0.0 };
             match entry {
                 // A punctual light of no power can never be seen: leave it out.
-                Entry::Punctual(_) if w <= 0.0 => continue,
+                Entry::Point(_) | Entry::Spot(_) | Entry::Directional(_) if w <= 0.0 => continue,
                 Entry::Environment(_) => environments.push(entries.len() as u32),
                 _ if entry.area().is_some() => hittable.push(entries.len() as u32),
                 _ => {}
@@ -279,13 +265,9 @@ impl LightSet {
         let p = ctx.p;
         let (i, choice) = self.chooser.choose(ctx, u_choice)?;
         match &self.entries[i] {
-            Entry::Punctual(light) => sample_punctual(light, p).map(|(wi, dist, li)| LightSample {
-                wi,
-                dist,
-                li,
-                pdf: choice,
-                is_delta: true,
-            }),
+            Entry::Point(l) => delta(point::sample(l, p), choice),
+            Entry::Spot(l) => delta(spot::sample(l, p), choice),
+            Entry::Directional(l) => delta(Some(directional::sample(l)), choice),
             Entry::Triangle(t) => t.sample(scene, ctx, u, choice),
             Entry::Sphere(s) => s.sample(p, u, choice),
             Entry::Disk(d) => d.sample(p, u, choice),
@@ -371,26 +353,16 @@ impl LightSet {
     }
 }
 
-/// Direction, distance and arriving intensity (already divided by distance squared) of a delta light.
-fn sample_punctual(light: &Light, p: Vec3) -> Option<(Vec3, f32, Vec3)> {
-    match *light {
-        Light::Point {
-            position,
-            intensity,
-        } => point::sample(position, intensity, p),
-        Light::Spot {
-            position,
-            direction,
-            intensity,
-            cos_inner,
-            cos_outer,
-        } => spot::sample(position, direction, intensity, cos_inner, cos_outer, p),
-        Light::Directional {
-            direction,
-            irradiance,
-        } => Some(directional::sample(direction, irradiance)),
-        _ => None,
-    }
+/// The sample of a delta light from its direction, distance and arriving intensity (already
+/// divided by distance squared), chosen with probability `choice`.
+fn delta(sample: Option<(Vec3, f32, Vec3)>, choice: f32) -> Option<LightSample> {
+    sample.map(|(wi, dist, li)| LightSample {
+        wi,
+        dist,
+        li,
+        pdf: choice,
+        is_delta: true,
+    })
 }
 
 #[cfg(test)]

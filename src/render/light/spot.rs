@@ -8,51 +8,39 @@ use glam::Vec3;
 use super::bounds::{Cone, LightBounds};
 use crate::geometry::Aabb;
 use crate::render::bsdf::luminance;
+use crate::scene::SpotLight;
 
 /// Direction, distance and arriving intensity (already divided by distance squared) from `p`; `None`
-/// outside the outer cone around `direction` (where the light points to).
-pub(super) fn sample(
-    position: Vec3,
-    direction: Vec3,
-    intensity: Vec3,
-    cos_inner: f32,
-    cos_outer: f32,
-    p: Vec3,
-) -> Option<(Vec3, f32, Vec3)> {
-    let to = position - p;
+/// outside the outer cone.
+pub(super) fn sample(l: &SpotLight, p: Vec3) -> Option<(Vec3, f32, Vec3)> {
+    let to = l.position - p;
     let d2 = to.length_squared();
     if d2 <= 0.0 {
         return None;
     }
     let wi = to / d2.sqrt();
     // KHR_lights_punctual's recommended smooth falloff between the cone angles.
-    let scale = 1.0 / (cos_inner - cos_outer).max(1e-3);
-    let a = ((direction.dot(-wi) - cos_outer) * scale).clamp(0.0, 1.0);
-    (a > 0.0).then(|| (wi, d2.sqrt(), intensity * (a * a) / d2))
+    let scale = 1.0 / (l.cos_inner - l.cos_outer).max(1e-3);
+    let a = ((l.direction.dot(-wi) - l.cos_outer) * scale).clamp(0.0, 1.0);
+    (a > 0.0).then(|| (wi, d2.sqrt(), l.intensity * (a * a) / d2))
 }
 
 /// The light's weight among the lights: the luminance of the flux into its outer cone.
-pub(super) fn power(intensity: Vec3, cos_outer: f32) -> f32 {
-    2.0 * PI * (1.0 - cos_outer) * luminance(intensity)
+pub(super) fn power(l: &SpotLight) -> f32 {
+    2.0 * PI * (1.0 - l.cos_outer) * luminance(l.intensity)
 }
 
 /// The bounds of the light's emission, of power `phi`, for the light BVH: full strength within
 /// the inner cone, some out to the outer one.
-pub(super) fn bounds(
-    position: Vec3,
-    direction: Vec3,
-    cos_inner: f32,
-    cos_outer: f32,
-    phi: f32,
-) -> LightBounds {
+pub(super) fn bounds(l: &SpotLight, phi: f32) -> LightBounds {
     // An inner cone wider than the outer one still lights only the outer one.
-    let outer = cos_outer.clamp(-1.0, 1.0).acos();
-    let inner = cos_inner.clamp(-1.0, 1.0).acos().min(outer);
+    let outer = l.cos_outer.clamp(-1.0, 1.0).acos();
+    let inner = l.cos_inner.clamp(-1.0, 1.0).acos().min(outer);
     LightBounds {
-        bounds: Aabb::from_points([position]),
+        bounds: Aabb::from_points([l.position]),
         phi,
         normals: Cone {
-            w: direction.normalize_or(Vec3::Z),
+            w: l.direction.normalize_or(Vec3::Z),
             cos_theta: inner.cos(),
         },
         cos_theta_e: (outer - inner).cos(),

@@ -7,7 +7,7 @@ use std::sync::Arc;
 use super::*;
 use crate::render::bsdf::luminance;
 use crate::sample::warp::concentric_disk;
-use crate::scene::{DiskLight, EnvMap, RectLight, SphereLight};
+use crate::scene::{DiskLight, EnvMap, PointLight, RectLight, SphereLight, SpotLight};
 
 fn lights_only(lights: Vec<Light>, sampler: LightSampler) -> (Scene, LightSet) {
     let scene = Scene {
@@ -265,28 +265,28 @@ fn punctual_lights_irradiance_sums_their_closed_forms_by_power_and_by_bvh() {
         let light = match k % 3 {
             0 => {
                 expected += intensity as f64 * cos / lit;
-                Light::Point {
+                Light::Point(PointLight {
                     position,
                     intensity: Vec3::splat(intensity),
-                }
+                })
             }
             1 => {
                 expected += intensity as f64 * cos / lit;
-                Light::Spot {
+                Light::Spot(SpotLight {
                     position,
                     direction: to_origin,
                     intensity: Vec3::splat(intensity),
                     cos_inner: 0.9,
                     cos_outer: 0.8,
-                }
+                })
             }
-            _ => Light::Spot {
+            _ => Light::Spot(SpotLight {
                 position,
                 direction: -to_origin,
                 intensity: Vec3::splat(intensity),
                 cos_inner: 0.9,
                 cos_outer: 0.8,
-            },
+            }),
         };
         lights.push(light);
     }
@@ -516,9 +516,11 @@ fn emissive_triangle_irradiance_matches_lambert_near_and_far() {
 fn auto_takes_the_bvh_from_its_light_count_on() {
     let points = |n: usize| {
         (0..n)
-            .map(|k| Light::Point {
-                position: Vec3::new(k as f32, 1.0, 0.0),
-                intensity: Vec3::ONE,
+            .map(|k| {
+                Light::Point(PointLight {
+                    position: Vec3::new(k as f32, 1.0, 0.0),
+                    intensity: Vec3::ONE,
+                })
             })
             .collect::<Vec<_>>()
     };

@@ -6,7 +6,10 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 use serde::Deserialize;
 
-use crate::scene::{DiskLight, EnvMap, Light, LoadError, RectLight, SphereLight};
+use crate::scene::{
+    DirectionalLight, DiskLight, EnvMap, Light, LoadError, PointLight, RectLight, SphereLight,
+    SpotLight,
+};
 
 /// Why a light of a scene file is refused.
 #[derive(Debug, thiserror::Error)]
@@ -179,21 +182,21 @@ fn facing(
 impl LightDesc {
     pub(super) fn to_light(&self, dir: &Path) -> Result<Light, LightError> {
         Ok(match self {
-            LightDesc::Point(p) => Light::Point {
+            LightDesc::Point(p) => Light::Point(PointLight {
                 position: p.position.into(),
                 intensity: rgb(p.color, p.intensity)?,
-            },
-            LightDesc::Spot(s) => Light::Spot {
+            }),
+            LightDesc::Spot(s) => Light::Spot(SpotLight {
                 position: s.position.into(),
                 direction: facing(s.position.into(), None, Some(s.look_at))?,
                 intensity: rgb(s.color, s.intensity)?,
                 cos_inner: s.inner_angle.to_radians().cos(),
                 cos_outer: s.outer_angle.to_radians().cos(),
-            },
-            LightDesc::Directional(d) => Light::Directional {
+            }),
+            LightDesc::Directional(d) => Light::Directional(DirectionalLight {
                 direction: facing(Vec3::ZERO, Some(d.direction), None)?,
                 irradiance: rgb(d.color, d.irradiance)?,
-            },
+            }),
             LightDesc::Sphere(s) => Light::Sphere(SphereLight {
                 center: s.center.into(),
                 radius: positive("radius", s.radius)?,

@@ -5,7 +5,7 @@ use glam::{Mat4, Quat, Vec3};
 use gltf::khr_lights_punctual::Kind;
 
 use super::Loader;
-use crate::scene::{Camera, Light, Projection};
+use crate::scene::{Camera, DirectionalLight, Light, PointLight, Projection, SpotLight};
 
 impl Loader<'_> {
     /// Adds a node's light, or a warning when its colour or direction is unusable; gives the light
@@ -18,29 +18,29 @@ impl Loader<'_> {
     ) -> Option<Light> {
         let color = Vec3::from(light.color()) * light.intensity();
         let local = match light.kind() {
-            Kind::Point => Light::Point {
+            Kind::Point => Light::Point(PointLight {
                 position: Vec3::ZERO,
                 intensity: color,
-            },
+            }),
             Kind::Spot {
                 inner_cone_angle,
                 outer_cone_angle,
-            } => Light::Spot {
+            } => Light::Spot(SpotLight {
                 position: Vec3::ZERO,
                 direction: Vec3::NEG_Z,
                 intensity: color,
                 cos_inner: inner_cone_angle.cos(),
                 cos_outer: outer_cone_angle.cos(),
-            },
-            Kind::Directional => Light::Directional {
+            }),
+            Kind::Directional => Light::Directional(DirectionalLight {
                 direction: Vec3::NEG_Z,
                 irradiance: color,
-            },
+            }),
         };
         let placed = local.transformed(&world);
         let direction_lost = matches!(
             placed,
-            Light::Spot { direction, .. } | Light::Directional { direction, .. } if direction == Vec3::ZERO
+            Light::Spot(SpotLight { direction, .. }) | Light::Directional(DirectionalLight { direction, .. }) if direction == Vec3::ZERO
         );
         if !color.is_finite() || direction_lost {
             self.scene.warnings.push(format!(

@@ -6,7 +6,9 @@ use std::path::{Path, PathBuf};
 use glam::{Vec2, Vec3};
 
 use super::uv_transform;
-use crate::scene::{AlphaMode, Light, Projection, Scene, TexRef, Wrap};
+use crate::scene::{
+    AlphaMode, DirectionalLight, Light, PointLight, Projection, Scene, SpotLight, TexRef, Wrap,
+};
 
 fn base64(bytes: &[u8]) -> String {
     const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -293,37 +295,37 @@ fn spot_and_point_lights() {
     assert_eq!(s.lights.len(), 3);
     assert_eq!(s.stats.lights, 3);
     // The node turns -Z to -Y: compare the direction within rounding, the rest exactly.
-    let Light::Spot {
+    let Light::Spot(SpotLight {
         position,
         direction,
         ..
-    } = s.lights[0]
+    }) = s.lights[0]
     else {
         panic!("expected a spot light, got {:?}", s.lights[0]);
     };
     assert!((direction - Vec3::NEG_Y).length() < 1e-5, "{direction}");
     assert_eq!(position, Vec3::new(0.0, 5.0, 0.0));
-    let expected = Light::Spot {
+    let expected = Light::Spot(SpotLight {
         position,
         direction,
         intensity: Vec3::new(4.0, 2.0, 1.0),
         cos_inner: 0.2f32.cos(),
         cos_outer: 0.5f32.cos(),
-    };
+    });
     assert_eq!(s.lights[0], expected);
     assert_eq!(
         s.lights[1],
-        Light::Point {
+        Light::Point(PointLight {
             position: Vec3::new(1.0, 2.0, 3.0),
             intensity: Vec3::splat(2.0)
-        }
+        })
     );
     assert_eq!(
         s.lights[2],
-        Light::Directional {
+        Light::Directional(DirectionalLight {
             direction: Vec3::NEG_Z,
             irradiance: Vec3::splat(3.0)
-        }
+        })
     );
 }
 
@@ -830,10 +832,10 @@ fn animation_pointer_moves_factors_lights_and_fov() {
     );
     assert_eq!(
         s.lights[0],
-        Light::Point {
+        Light::Point(PointLight {
             position: Vec3::new(0.0, 1.0, 0.0),
             intensity: Vec3::new(2.0, 1.0, 0.5),
-        }
+        })
     );
     match s.cameras[0].projection {
         Projection::Perspective { yfov, .. } => assert_eq!(yfov, 1.0),
