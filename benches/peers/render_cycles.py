@@ -29,7 +29,8 @@ Why each setting:
   the spec's (alpha_t = mix(a, 1, strength^2) along the tangent, alpha_b = a), and leaves the
   tangent unlinked (Cycles' default tangent, not the mesh's) unless there is an anisotropy texture.
   This sets Roughness and Anisotropic so that Blender's alpha_x, alpha_y are the spec's (where the
-  ratio fits Blender's largest, 10) and links the UV map's tangent; unlinked inputs only.
+  ratio fits Blender's largest, 10), per shading point with math nodes (so a strength from the
+  anisotropy texture is mapped too), and links the UV map's tangent where none is linked.
 - `--iridescence thin-film`: Blender 5.0's importer reads no KHR_materials_iridescence (and refuses
   files that require it: give it a copy without extensionsRequired); this puts the extension's IOR
   and thickness (mix(min, max, texture G), max without a texture) into the Principled BSDF's thin
@@ -139,23 +140,41 @@ def spec_absorption(materials):
     return changed
 
 
+def math_node(tree, op, *inputs, clamp=False):
+    """A Math node of `op` over sockets or constants; its output socket."""
+    node = tree.nodes.new("ShaderNodeMath")
+    node.operation, node.use_clamp = op, clamp
+    for slot, x in zip(node.inputs, inputs):
+        if isinstance(x, (int, float)):
+            slot.default_value = x
+        else:
+            tree.links.new(x, slot)
+    return node.outputs[0]
+
+
 def spec_anisotropy(materials):
-    # glint's MIN_ALPHA: a smooth anisotropic surface becomes a rough line-shaped lobe.
+    # The spec's alphas in Blender's Burley mapping, per shading point (math nodes, so that a
+    # strength from the anisotropy texture is mapped too): a = r^2 (glint's MIN_ALPHA 1e-3 below:
+    # a smooth anisotropic surface becomes a rough line-shaped lobe), alpha_t = a + (1 - a) s^2;
+    # Roughness = (alpha_t a)^(1/4), Anisotropic = (1 - a / alpha_t) / 0.9, at most 1.
     changed = []
     for m, n in principled(materials):
         strength, rough = n.inputs["Anisotropic"], n.inputs["Roughness"]
-        if strength.is_linked or rough.is_linked or strength.default_value <= 0:
+        if not strength.is_linked and strength.default_value <= 0:
             continue
-        s = min(strength.default_value, 1.0)
-        alpha = max(rough.default_value ** 2, 1e-3)
-        alpha_t = alpha + (1 - alpha) * s * s
-        rough.default_value = (alpha_t * alpha) ** 0.25
-        strength.default_value = min(1.0, (1 - alpha / alpha_t) / 0.9)
+        tree = m.node_tree
+        s = math_node(tree, "MINIMUM", source(tree, strength), 1.0)
+        a = math_node(tree, "MAXIMUM", math_node(tree, "POWER", source(tree, rough), 2.0), 1e-3)
+        alpha_t = math_node(tree, "MULTIPLY_ADD", math_node(tree, "SUBTRACT", 1.0, a),
+                            math_node(tree, "MULTIPLY", s, s), a)
+        tree.links.new(math_node(tree, "POWER", math_node(tree, "MULTIPLY", alpha_t, a), 0.25), rough)
+        ratio = math_node(tree, "SUBTRACT", 1.0, math_node(tree, "DIVIDE", a, alpha_t))
+        tree.links.new(math_node(tree, "DIVIDE", ratio, 0.9, clamp=True), strength)
         tangent = n.inputs["Tangent"]
         if not tangent.is_linked:
-            node = m.node_tree.nodes.new("ShaderNodeTangent")
+            node = tree.nodes.new("ShaderNodeTangent")
             node.direction_type, node.uv_map = "UV_MAP", "UVMap"
-            m.node_tree.links.new(node.outputs["Tangent"], tangent)
+            tree.links.new(node.outputs["Tangent"], tangent)
         changed.append(m.name)
     return changed
 
