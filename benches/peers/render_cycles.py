@@ -220,10 +220,10 @@ def thin_film(materials, model, scratch, spec_metals):
         tex = ext.get("iridescenceThicknessTexture")
         if tex is not None:
             import bpy
-            source = doc["textures"][tex["index"]]["source"]
-            file = os.path.join(scratch, f"iridescence{source}.png")
+            image = doc["textures"][tex["index"]]["source"]
+            file = os.path.join(scratch, f"iridescence{image}.png")
             with open(file, "wb") as f:
-                f.write(image_bytes(source))
+                f.write(image_bytes(image))
             tree = m.node_tree
             node = tree.nodes.new("ShaderNodeTexImage")
             node.image = bpy.data.images.load(file)
