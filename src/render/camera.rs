@@ -73,7 +73,7 @@ impl RayCamera {
 
     /// The camera ray through `film`, drawing a lens position (`Dim::Lens`) only for a thin lens and
     /// a time (`Dim::Time`) only when something moves.
-    pub fn generate(&self, film: Vec2, sampler: &mut dyn Sampler) -> Ray {
+    pub fn generate(&self, film: Vec2, sampler: &mut impl Sampler) -> Ray {
         let u_lens = match self.lens {
             Some(_) => sampler.get_2d(Dim::Lens, 0),
             None => Vec2::splat(0.5),

@@ -64,7 +64,7 @@ impl<'a> Integrator<'a> {
     /// The seed of stochastic transparency for the rays leaving `bounce`; without alpha-tested
     /// geometry nothing reads it, so no sample is drawn (samplers are stateless per dimension, so
     /// every other value stays the same).
-    fn alpha_seed(&self, sampler: &mut dyn Sampler, bounce: u32) -> u32 {
+    fn alpha_seed(&self, sampler: &mut impl Sampler, bounce: u32) -> u32 {
         if self.alpha_seeds {
             sampler.get_seed(bounce)
         } else {
@@ -72,7 +72,7 @@ impl<'a> Integrator<'a> {
         }
     }
 
-    pub fn li(&self, camera_ray: Ray, sampler: &mut dyn Sampler) -> PathResult {
+    pub fn li(&self, camera_ray: Ray, sampler: &mut impl Sampler) -> PathResult {
         let mut none = PathFeatures::default();
         if self.thin_shadows {
             self.li_with::<true, false>(camera_ray, sampler, &mut none)
@@ -86,7 +86,7 @@ impl<'a> Integrator<'a> {
     pub fn li_features(
         &self,
         camera_ray: Ray,
-        sampler: &mut dyn Sampler,
+        sampler: &mut impl Sampler,
         features: &mut PathFeatures,
     ) -> PathResult {
         if self.thin_shadows {
@@ -136,7 +136,7 @@ impl<'a> Integrator<'a> {
     fn li_with<const THIN: bool, const FEATURES: bool>(
         &self,
         camera_ray: Ray,
-        sampler: &mut dyn Sampler,
+        sampler: &mut impl Sampler,
         features: &mut PathFeatures,
     ) -> PathResult {
         let mut ray = camera_ray.with_seed(self.alpha_seed(sampler, 0));
@@ -231,7 +231,7 @@ impl<'a> Integrator<'a> {
         leave: &Leave,
         (bounce, u_choice): (u32, f32),
         beta: Vec3,
-        sampler: &mut dyn Sampler,
+        sampler: &mut impl Sampler,
         rays: &mut u32,
     ) -> Option<Vec3> {
         let u_light = sampler.get_2d(Dim::Light, bounce);
@@ -289,7 +289,7 @@ impl<'a> Integrator<'a> {
         leave: &Leave,
         bounce: u32,
         st: &mut PathState,
-        sampler: &mut dyn Sampler,
+        sampler: &mut impl Sampler,
     ) -> Option<Ray> {
         let u_lobe = sampler.get_1d(Dim::BsdfLobe, bounce);
         let u_dir = sampler.get_2d(Dim::Bsdf, bounce);
