@@ -472,8 +472,9 @@ impl Collapsed {
 /// Turns the binary tree below `at` (over `size` references) into `W`-wide nodes appended to `out`;
 /// returns the new node's index. With `parallel`, the subtrees of the new node are collapsed in
 /// parallel (each into its own arrays, then appended).
-fn collapse(src: &Source, at: usize, size: usize, parallel: bool, out: &mut Collapsed) -> u32 {
-    let bin = src.bin;
+/// The up to W children of a wide node over binary node `at` (of `size` references): the binary
+/// node's own children, then the largest inner child opened until there are W (or only leaves).
+fn widest_children(bin: &[Node], at: usize, size: usize) -> ([(usize, usize); W], usize) {
     let inner = |i: usize| bin[i].count == 0;
     // Children of binary inner node `i` over `n` references: the left one follows it, the right one
     // is at `index`, and the left one's slots (twice its references) lie in between.
@@ -490,7 +491,6 @@ fn collapse(src: &Source, at: usize, size: usize, parallel: bool, out: &mut Coll
         }
         .surface_area()
     };
-    // Open the largest inner child until there are W children (or only leaves left).
     let mut kids = [(0usize, 0usize); W];
     let mut n = if inner(at) {
         kids[..2].copy_from_slice(&children((at, size)));
@@ -511,6 +511,13 @@ fn collapse(src: &Source, at: usize, size: usize, parallel: bool, out: &mut Coll
         kids[n] = r;
         n += 1;
     }
+    (kids, n)
+}
+
+fn collapse(src: &Source, at: usize, size: usize, parallel: bool, out: &mut Collapsed) -> u32 {
+    let bin = src.bin;
+    let inner = |i: usize| bin[i].count == 0;
+    let (kids, n) = widest_children(bin, at, size);
     let index = out.nodes.len();
     out.nodes.push(NodeW {
         b: [

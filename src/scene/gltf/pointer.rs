@@ -12,7 +12,7 @@ use glam::Vec3;
 use super::error::GltfError;
 use super::Loader;
 use crate::scene::animated_properties::{AnimatedMaterial, MaterialProperty};
-use crate::scene::animation::{Channel, Property};
+use crate::scene::animation::{Channel, Curve, Property};
 
 /// One pointer channel as the file gives it.
 #[derive(Clone, Debug, PartialEq)]
@@ -157,42 +157,7 @@ impl Loader<'_> {
             if curve.times.is_empty() {
                 continue;
             }
-            match target {
-                Target::Node(node, property) => out.channels.push(Channel {
-                    node,
-                    property,
-                    curve,
-                }),
-                Target::Material(m, property) => {
-                    material_entry(doc, out, m).curves.push((property, curve))
-                }
-                Target::LightColor(l) | Target::LightIntensity(l) => {
-                    // Before the caller filters them, the animated lights are `placed.lights`.
-                    for (light, p) in out.properties.lights.iter_mut().zip(&placed.lights) {
-                        if p.source != l as usize {
-                            continue;
-                        }
-                        if matches!(target, Target::LightColor(_)) {
-                            light.color_curve = Some(curve.clone());
-                        } else {
-                            light.intensity_curve = Some(curve.clone());
-                        }
-                    }
-                }
-                Target::CameraYfov(c) => {
-                    for (scene_camera, (gltf_camera, _)) in placed.cameras.iter().enumerate() {
-                        if *gltf_camera == c as usize {
-                            out.properties.cameras.push(
-                                crate::scene::animated_properties::AnimatedCamera {
-                                    camera: scene_camera as u32,
-                                    yfov: curve.clone(),
-                                },
-                            );
-                        }
-                    }
-                }
-                Target::Weights(_) => unreachable!("weights are handled above"),
-            }
+            attach_curve(doc, out, placed, target, curve);
         }
         Ok(())
     }
@@ -239,6 +204,51 @@ fn material_entry<'a>(
         }
     };
     &mut list[at]
+}
+
+/// Puts an animation pointer's curve where its target's property is animated: a node channel, a
+/// material's curves, the lights and cameras placed from the animated glTF light or camera.
+fn attach_curve(
+    doc: &gltf::Document,
+    out: &mut crate::scene::Animation,
+    placed: &super::Placed,
+    target: Target,
+    curve: Curve,
+) {
+    match target {
+        Target::Node(node, property) => out.channels.push(Channel {
+            node,
+            property,
+            curve,
+        }),
+        Target::Material(m, property) => material_entry(doc, out, m).curves.push((property, curve)),
+        Target::LightColor(l) | Target::LightIntensity(l) => {
+            // Before the caller filters them, the animated lights are `placed.lights`.
+            for (light, p) in out.properties.lights.iter_mut().zip(&placed.lights) {
+                if p.source != l as usize {
+                    continue;
+                }
+                if matches!(target, Target::LightColor(_)) {
+                    light.color_curve = Some(curve.clone());
+                } else {
+                    light.intensity_curve = Some(curve.clone());
+                }
+            }
+        }
+        Target::CameraYfov(c) => {
+            for (scene_camera, (gltf_camera, _)) in placed.cameras.iter().enumerate() {
+                if *gltf_camera == c as usize {
+                    out.properties.cameras.push(
+                        crate::scene::animated_properties::AnimatedCamera {
+                            camera: scene_camera as u32,
+                            yfov: curve.clone(),
+                        },
+                    );
+                }
+            }
+        }
+        Target::Weights(_) => unreachable!("weights are handled above"),
+    }
 }
 
 #[cfg(test)]
