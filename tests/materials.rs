@@ -343,7 +343,8 @@ fn thin_glass_pane_passes_direct_light() {
     );
 }
 
-/// KHR_materials_unlit: the sphere shows its base colour exactly, whatever lights it.
+/// KHR_materials_unlit: the sphere shows its base colour exactly, whatever lights it, also where
+/// the camera's hit is the path's last vertex (depth 0).
 #[test]
 fn unlit_sphere_renders_its_base_colour() {
     let c = Vec4::new(0.3, 0.6, 0.9, 1.0);
@@ -352,11 +353,16 @@ fn unlit_sphere_renders_its_base_colour() {
         unlit: true,
         ..Default::default()
     });
-    let img = render(&scene, &furnace_view(), 24, 4, 8);
-    let px = sphere_pixels(&img);
-    assert!(px.len() > 100);
-    for p in &px {
-        assert!((*p - c.truncate()).abs().max_element() < 1e-5, "pixel {p}");
+    for depth in [8, 0] {
+        let img = render(&scene, &furnace_view(), 24, 4, depth);
+        let px = sphere_pixels(&img);
+        assert!(px.len() > 100);
+        for p in &px {
+            assert!(
+                (*p - c.truncate()).abs().max_element() < 1e-5,
+                "depth {depth}: pixel {p}"
+            );
+        }
     }
 }
 

@@ -167,6 +167,13 @@ impl<'a> Integrator<'a> {
                 }
                 break;
             };
+            // The last vertex only adds its emission: none to add, nothing to build.
+            if !FEATURES
+                && bounce >= self.max_depth
+                && !SurfaceInteraction::can_emit(self.scene, &hit)
+            {
+                break;
+            }
             let mut si = SurfaceInteraction::new(self.scene, &hit, &ray);
             let mut u_choice = sampler.get_1d(Dim::LightChoice, bounce);
             if si.bsdf.dispersion.is_some() {
