@@ -80,6 +80,27 @@ pub fn owen_scramble(x: u32, seed: u32) -> u32 {
     v.reverse_bits()
 }
 
+/// The hash of a flat dimension that each pixel's key is mixed with, tabulated for the dimensions
+/// of the first 30 bounces (a path's samples take a few dozen, each once per sample).
+fn dimension_key(d: u32) -> u64 {
+    const fn key(d: u32) -> u64 {
+        mix64(d as u64 + 0x6A09_E667_F3BC_C909)
+    }
+    const TABLE: [u64; 256] = {
+        let mut t = [0u64; 256];
+        let mut d = 0;
+        while d < 256 {
+            t[d] = key(d as u32);
+            d += 1;
+        }
+        t
+    };
+    match TABLE.get(d as usize) {
+        Some(&k) => k,
+        None => key(d),
+    }
+}
+
 fn to_unit(x: u32) -> f32 {
     (x >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
 }
@@ -102,7 +123,7 @@ impl SobolSampler {
 
     /// Scrambled values of the shuffled point in Sobol dimensions 0 and 1 for flat dimension `d`.
     fn point(&self, d: u32, both: bool) -> (u32, u32) {
-        let h = mix64(self.pixel ^ mix64(d as u64 + 0x6A09_E667_F3BC_C909));
+        let h = mix64(self.pixel ^ dimension_key(d));
         let shuffled = owen_scramble(self.index, h as u32);
         let x = owen_scramble(sobol_u32(shuffled, 0), (h >> 32) as u32);
         let y = if both {
@@ -134,6 +155,18 @@ impl Sampler for SobolSampler {
 mod tests {
     use super::super::RandomSampler;
     use super::*;
+
+    /// The tabulated dimension keys are the hash they stand for, inside the table and past it.
+    #[test]
+    fn dimension_keys_are_the_hash() {
+        for d in [0, 1, 5, 137, 255, 256, 257, 10_000, u32::MAX] {
+            assert_eq!(
+                dimension_key(d),
+                mix64(d as u64 + 0x6A09_E667_F3BC_C909),
+                "dimension {d}"
+            );
+        }
+    }
 
     /// Exact star discrepancy of a 2D point set: the worst box [0,u) x [0,v) anchored at the origin,
     /// over the corners the points define (open and closed boxes).
