@@ -81,7 +81,7 @@ pub fn owen_scramble(x: u32, seed: u32) -> u32 {
 }
 
 /// The hash of a flat dimension that each pixel's key is mixed with, tabulated for the dimensions
-/// of the first 30 bounces (a path's samples take a few dozen, each once per sample).
+/// of the camera and the first 31 bounces (5 + 8 a bounce): a path draws a few dozen per sample.
 fn dimension_key(d: u32) -> u64 {
     const fn key(d: u32) -> u64 {
         mix64(d as u64 + 0x6A09_E667_F3BC_C909)
