@@ -198,19 +198,26 @@ def gltf_document(path):
     return doc, image_bytes
 
 
+def imported(materials, doc):
+    """(glTF material, Blender material, its Principled BSDF) for each glTF material the importer
+    made, found by name (the bench makes glTF names unique)."""
+    by_name = {m.name: (m, n) for m, n in principled(materials)}
+    for g in doc.get("materials", []):
+        found = by_name.get(g.get("name", ""))
+        if found is not None:
+            yield (g, *found)
+
+
 def thin_film(materials, model, scratch, spec_metals):
     # Blender's importer reads no KHR_materials_iridescence; Principled's thin film is the same
     # Belcour-Barla model. thickness = mix(min, max, texture.g), max without a texture; the factor
     # has no Blender input, so only factor 1 is mapped (others are reported, left as imported).
     doc, image_bytes = gltf_document(model)
-    by_name = {m.name: (m, n) for m, n in principled(materials)}
     changed, skipped = [], []
-    for i, g in enumerate(doc.get("materials", [])):
+    for g, m, n in imported(materials, doc):
         ext = g.get("extensions", {}).get("KHR_materials_iridescence")
-        found = by_name.get(g.get("name", ""))
-        if ext is None or found is None:
+        if ext is None:
             continue
-        m, n = found
         if ext.get("iridescenceFactor", 0.0) != 1.0 or "iridescenceTexture" in ext:
             skipped.append(m.name)
             continue
@@ -269,14 +276,11 @@ def thin_walled(materials, model):
     # refraction of IOR 1 tinted by the base colour (straight on, blurred by the roughness) and a
     # white GGX reflection. Exact where metallic is 0 or 1.
     doc, _ = gltf_document(model)
-    by_name = {m.name: (m, n) for m, n in principled(materials)}
     changed = []
-    for g in doc.get("materials", []):
+    for g, m, n in imported(materials, doc):
         ext = g.get("extensions", {})
-        found = by_name.get(g.get("name", ""))
-        if "KHR_materials_transmission" not in ext or "KHR_materials_volume" in ext or found is None:
+        if "KHR_materials_transmission" not in ext or "KHR_materials_volume" in ext:
             continue
-        m, n = found
         tree = m.node_tree
         out = next((o for o in tree.nodes if o.bl_idname == "ShaderNodeOutputMaterial"), None)
         if out is None or not out.inputs["Surface"].is_linked:
@@ -286,25 +290,16 @@ def thin_walled(materials, model):
         for link in list(n.inputs["Transmission Weight"].links):
             tree.links.remove(link)
         n.inputs["Transmission Weight"].default_value = 0.0
-        rest = tree.nodes.new("ShaderNodeMath")
-        rest.operation, rest.inputs[0].default_value = "SUBTRACT", 1.0
-        tree.links.new(metal, rest.inputs[1])
-        share = tree.nodes.new("ShaderNodeMath")
-        share.operation = "MULTIPLY"
-        tree.links.new(weight, share.inputs[0])
-        tree.links.new(rest.outputs[0], share.inputs[1])
+        share = math_node(tree, "MULTIPLY", weight, math_node(tree, "SUBTRACT", 1.0, metal))
         through = tree.nodes.new("ShaderNodeBsdfRefraction")
         through.distribution = "GGX"
         through.inputs["IOR"].default_value = 1.0
         mirror = tree.nodes.new("ShaderNodeBsdfGlossy")
         mirror.distribution = "GGX"
         mirror.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+        rough = source(tree, n.inputs["Roughness"])
         for bsdf in (through, mirror):
-            rough = n.inputs["Roughness"]
-            if rough.is_linked:
-                tree.links.new(rough.links[0].from_socket, bsdf.inputs["Roughness"])
-            else:
-                bsdf.inputs["Roughness"].default_value = rough.default_value
+            tree.links.new(rough, bsdf.inputs["Roughness"])
         base = n.inputs["Base Color"]
         if base.is_linked:
             tree.links.new(base.links[0].from_socket, through.inputs["Color"])
@@ -313,13 +308,9 @@ def thin_walled(materials, model):
         # Cycles' Fresnel node takes 1 / IOR on back faces (a wall seen from inside a closed mesh
         # would reflect totally); a thin wall has air on both sides, so hand it IOR's inverse there.
         ior = n.inputs["IOR"].default_value
-        side = tree.nodes.new("ShaderNodeNewGeometry")
-        flip = tree.nodes.new("ShaderNodeMath")
-        flip.operation = "MULTIPLY_ADD"
-        tree.links.new(side.outputs["Backfacing"], flip.inputs[0])
-        flip.inputs[1].default_value, flip.inputs[2].default_value = 1.0 / ior - ior, ior
+        side = tree.nodes.new("ShaderNodeNewGeometry").outputs["Backfacing"]
         fresnel = tree.nodes.new("ShaderNodeFresnel")
-        tree.links.new(flip.outputs[0], fresnel.inputs["IOR"])
+        tree.links.new(math_node(tree, "MULTIPLY_ADD", side, 1.0 / ior - ior, ior), fresnel.inputs["IOR"])
         if n.inputs["Normal"].is_linked:
             tree.links.new(n.inputs["Normal"].links[0].from_socket, fresnel.inputs["Normal"])
             for bsdf in (through, mirror):
@@ -329,7 +320,7 @@ def thin_walled(materials, model):
         tree.links.new(through.outputs[0], sheet.inputs[1])
         tree.links.new(mirror.outputs[0], sheet.inputs[2])
         both = tree.nodes.new("ShaderNodeMixShader")
-        tree.links.new(share.outputs[0], both.inputs[0])
+        tree.links.new(share, both.inputs[0])
         tree.links.new(n.outputs["BSDF"], both.inputs[1])
         tree.links.new(sheet.outputs[0], both.inputs[2])
         alpha = n.inputs["Alpha"]

@@ -52,12 +52,10 @@ impl SurfaceInteraction {
     /// Whether the surface `hit` can have any emitted radiance (an emissive factor, or unlit): where
     /// not, a path's last vertex adds nothing and needs no interaction. CSG hits say yes.
     pub fn can_emit(scene: &Scene, hit: &Hit) -> bool {
-        if hit.csg().is_some() {
-            return true;
+        hit.csg().is_some() || {
+            let mat = scene.material_of(hit.inst);
+            mat.unlit || mat.is_emissive()
         }
-        let mesh = &scene.meshes[scene.instances[hit.inst as usize].mesh as usize];
-        let mat = &scene.materials[mesh.material as usize];
-        mat.unlit || mat.emissive != Vec3::ZERO
     }
 
     pub fn new(scene: &Scene, hit: &Hit, ray: &Ray) -> Self {

@@ -80,11 +80,14 @@ pub fn owen_scramble(x: u32, seed: u32) -> u32 {
     v.reverse_bits()
 }
 
+/// What a flat dimension's index is offset by before it is hashed.
+const DIMENSION_SALT: u64 = 0x6A09_E667_F3BC_C909;
+
 /// The hash of a flat dimension that each pixel's key is mixed with, tabulated for the dimensions
 /// of the camera and the first 31 bounces (5 + 8 a bounce): a path draws a few dozen per sample.
 fn dimension_key(d: u32) -> u64 {
     const fn key(d: u32) -> u64 {
-        mix64(d as u64 + 0x6A09_E667_F3BC_C909)
+        mix64(d as u64 + DIMENSION_SALT)
     }
     const TABLE: [u64; 256] = {
         let mut t = [0u64; 256];
@@ -162,7 +165,7 @@ mod tests {
         for d in [0, 1, 5, 137, 255, 256, 257, 10_000, u32::MAX] {
             assert_eq!(
                 dimension_key(d),
-                mix64(d as u64 + 0x6A09_E667_F3BC_C909),
+                mix64(d as u64 + DIMENSION_SALT),
                 "dimension {d}"
             );
         }

@@ -63,34 +63,40 @@ impl Bsdf {
     /// internal reflection reflects everything whatever the weight); with a specular colour, its
     /// strongest channel, which is what the layers below lose.
     fn fresnel_dielectric(&self, cos: f32) -> f32 {
-        let plain = self.plain_fresnel_dielectric(cos);
-        if plain >= 1.0 {
-            return 1.0;
-        }
-        match &self.iridescence {
-            None => plain,
-            Some(film) => {
-                let thin = self.specular * film.fresnel(cos, self.dielectric_f0()).max_element();
-                plain + (thin - plain) * film.factor
-            }
-        }
+        self.dielectric_reflectance(cos).0
     }
 
-    /// Per channel, what a thin film leaves the layers below, relative to the scalar `1 - F` the
-    /// lobes are weighted by (None without a film). The film absorbs nothing, so what it does not
-    /// reflect of each channel goes on: `1 - F_rgb` with the film's own colours, as the spec's
-    /// fresnel_mix with the extension's RGB Fresnel and Cycles' thin film do (the specular
-    /// colour's share stays KHR_materials_specular's strongest channel).
-    fn film_share(&self, cos: f32) -> Option<Vec3> {
-        let film = self.iridescence.as_ref()?;
+    /// `fresnel_dielectric` and, with a thin film (KHR_materials_iridescence, mixed in by its
+    /// factor), the layer's reflectance per channel, from one evaluation of the film.
+    fn dielectric_reflectance(&self, cos: f32) -> (f32, Option<Vec3>) {
         let plain = self.plain_fresnel_dielectric(cos);
-        let thin = self.specular * film.fresnel(cos, self.dielectric_f0());
-        let scalar = 1.0 - (plain + (thin.max_element() - plain) * film.factor);
-        if plain >= 1.0 || scalar <= 0.0 {
-            return Some(Vec3::ZERO);
+        if plain >= 1.0 {
+            return (1.0, self.iridescence.as_ref().map(|_| Vec3::ONE));
         }
-        let rgb = Vec3::ONE - Vec3::splat(plain).lerp(thin, film.factor);
-        Some(rgb.max(Vec3::ZERO) / scalar)
+        let Some(film) = &self.iridescence else {
+            return (plain, None);
+        };
+        let thin = self.specular * film.fresnel(cos, self.dielectric_f0());
+        let scalar = plain + (thin.max_element() - plain) * film.factor;
+        (scalar, Some(Vec3::splat(plain).lerp(thin, film.factor)))
+    }
+
+    /// What the dielectric layer lets through to the layers below at `cos`: the scalar `1 - F` the
+    /// lobes are weighted by and, with a thin film, each channel's share relative to it. The film
+    /// absorbs nothing, so what it does not reflect of each channel goes on: `1 - F_rgb` with the
+    /// film's own colours, as the spec's fresnel_mix with the extension's RGB Fresnel and Cycles'
+    /// thin film do (the specular colour's share stays KHR_materials_specular's strongest channel).
+    fn dielectric_through(&self, cos: f32) -> (f32, Option<Vec3>) {
+        let (f, rgb) = self.dielectric_reflectance(cos);
+        let t = 1.0 - f;
+        let share = rgb.map(|rgb| {
+            if t <= 0.0 {
+                Vec3::ZERO
+            } else {
+                (Vec3::ONE - rgb).max(Vec3::ZERO) / t
+            }
+        });
+        (t, share)
     }
 
     /// `fresnel_dielectric` without the film: 1 under total internal reflection.
@@ -149,29 +155,21 @@ impl Bsdf {
     }
 
     /// What the dielectric specular layer leaves the diffuse under it, at view cosine `cos_o` and
-    /// microfacet cosine `oh`: 1 - F(V.H) (the spec's fresnel_mix), or 1 - E(N.V) (albedo scaling,
-    /// E estimated by the Fresnel at N.V as Cycles does, times the multiple-scattering share).
-    fn diffuse_share(&self, cos_o: f32, oh: f32) -> f32 {
+    /// microfacet cosine `oh`: 1 - F(V.H) (the spec's fresnel_mix, with a film's share per channel
+    /// as `dielectric_through` gives it), or 1 - E(N.V) (albedo scaling, E estimated by the Fresnel
+    /// at N.V as Cycles does, times the multiple-scattering share; as Cycles' layering, the
+    /// strongest channel of a film's albedo, so that no channel gains energy).
+    fn diffuse_share(&self, cos_o: f32, oh: f32) -> (f32, Option<Vec3>) {
         match self.model.layering {
-            Layering::Spec => 1.0 - self.fresnel_dielectric(oh),
+            Layering::Spec => self.dielectric_through(oh),
             Layering::Albedo => {
                 let mut e = self.fresnel_dielectric(cos_o);
                 if self.model.ggx == GgxScattering::Multi && self.alpha > 0.0 {
                     let fss = self.specular * energy::dielectric_average(self.eta);
                     e *= energy::darkening(&self.ggx(), cos_o, fss);
                 }
-                (1.0 - e).max(0.0)
+                ((1.0 - e).max(0.0), None)
             }
-        }
-    }
-
-    /// `film_share` for the diffuse under the specular layer: under the spec's fresnel_mix, at the
-    /// microfacet cosine; none under albedo scaling, which (as Cycles' layering) takes the
-    /// strongest channel of the layer's albedo so that no channel gains energy.
-    fn diffuse_film(&self, oh: f32) -> Option<Vec3> {
-        match self.model.layering {
-            Layering::Spec => self.film_share(oh),
-            Layering::Albedo => None,
         }
     }
 
@@ -260,12 +258,10 @@ impl Bsdf {
         if i.z > 0.0 {
             let h = (o + i).normalize();
             let oh = o.dot(h).max(0.0);
-            let mut diffuse = self.base
-                * ((1.0 - self.metallic)
-                    * (1.0 - self.transmission)
-                    * self.diffuse_share(o.z, oh)
-                    * FRAC_1_PI);
-            if let Some(film) = self.diffuse_film(oh) {
+            let (share, film) = self.diffuse_share(o.z, oh);
+            let mut diffuse =
+                self.base * ((1.0 - self.metallic) * (1.0 - self.transmission) * share * FRAC_1_PI);
+            if let Some(film) = film {
                 diffuse *= film;
             }
             let mut f = diffuse;
@@ -304,11 +300,10 @@ impl Bsdf {
         lobes: &Lobes,
     ) -> (Vec3, f32) {
         let h = (o + Vec3::new(i.x, i.y, -i.z)).normalize();
-        let oh = o.dot(h).max(0.0);
-        let weight =
-            (1.0 - self.metallic) * (1.0 - self.transmission) * self.diffuse_share(o.z, oh);
+        let (share, film) = self.diffuse_share(o.z, o.dot(h).max(0.0));
+        let weight = (1.0 - self.metallic) * (1.0 - self.transmission) * share;
         let mut f = dt.eval(self.base, i) * weight;
-        if let Some(film) = self.diffuse_film(oh) {
+        if let Some(film) = film {
             f *= film;
         }
         (
@@ -331,10 +326,9 @@ impl Bsdf {
             let m = Vec3::new(i.x, i.y, -i.z);
             let h = (o + m).normalize();
             let d = ggx.d(h);
-            let oh = o.dot(h).max(0.0);
-            let t = 1.0 - self.fresnel_dielectric(oh);
+            let (t, film) = self.dielectric_through(o.dot(h).max(0.0));
             let mut f = tint * (t * d * ggx.g2(o, m) / (4.0 * o.z * m.z));
-            if let Some(film) = self.film_share(oh) {
+            if let Some(film) = film {
                 f *= film;
             }
             let pdf = lobes.transmit * ggx.g1(o) * d / (4.0 * o.z);
@@ -352,10 +346,10 @@ impl Bsdf {
         }
         let denom = (ih + oh / eta) * (ih + oh / eta);
         let d = ggx.d(h);
-        let t = 1.0 - self.fresnel_dielectric(oh);
+        let (t, film) = self.dielectric_through(oh);
         let mut f =
             tint * (t * d * ggx.g2(o, i) * (ih * oh).abs() / (denom * o.z * i.z.abs() * eta * eta));
-        if let Some(film) = self.film_share(oh) {
+        if let Some(film) = film {
             f *= film;
         }
         let pdf = lobes.transmit * ggx.g1(o) * d * oh / o.z * ih.abs() / denom;
@@ -408,10 +402,10 @@ impl Bsdf {
         }
         if (smooth || self.index_matched()) && pick_transmit {
             let mut tint = self.base * ((1.0 - self.metallic) * self.transmission);
-            if let Some(film) = self.film_share(o.z) {
+            let (t, film) = self.dielectric_through(o.z);
+            if let Some(film) = film {
                 tint *= film;
             }
-            let t = 1.0 - self.fresnel_dielectric(o.z);
             if self.thin {
                 return out(-o, tint * (t / o.z), lobes.transmit, true, true, 1.0);
             }
@@ -466,9 +460,9 @@ impl Bsdf {
             return Vec3::ZERO;
         }
         let cos = self.frame.n.dot(wo).abs();
-        let through = self.base
-            * ((1.0 - self.metallic) * self.transmission * (1.0 - self.fresnel_dielectric(cos)));
-        match self.film_share(cos) {
+        let (t, film) = self.dielectric_through(cos);
+        let through = self.base * ((1.0 - self.metallic) * self.transmission * t);
+        match film {
             Some(film) => through * film,
             None => through,
         }
