@@ -169,7 +169,7 @@ fn white_furnace_smooth_glass_sphere_renders_one() {
     }
 }
 
-/// The energy a rough glass interface keeps (reflected plus transmitted, radiance scaling undone),
+/// The energy a rough glass interface keeps (reflected plus transmitted),
 /// the least over incidence cosines 0.2..1, from outside or inside: the single-scattering model's loss.
 fn least_interface_energy(roughness: f32, entering: bool) -> f64 {
     let frame = Frame::from_normal(Vec3::Z);
@@ -187,7 +187,7 @@ fn least_interface_energy(roughness: f32, entering: bool) -> f64 {
                     let lobe = (l as f32 + 0.5) / 16.0;
                     let u = Vec2::new((a as f32 + 0.5) / n as f32, (b as f32 + 0.5) / n as f32);
                     if let Some(s) = bsdf.sample(wo, lobe, u) {
-                        sum += (s.f.x * s.wi.z.abs() / s.pdf * s.eta * s.eta) as f64;
+                        sum += (s.f.x * s.wi.z.abs() / s.pdf) as f64;
                     }
                 }
             }
@@ -294,6 +294,31 @@ fn absorbing_slab_follows_beer_lambert() {
         (got - expected).abs().max_element() < 1e-4,
         "{got} vs {expected}"
     );
+}
+
+/// One face of a glass volume (IOR 1.5, not thin) in a white environment, seen head-on: the path
+/// refracts in and leaves through the open boundary without refracting out. KHR_materials_volume's
+/// BTDF (ior_o^2 over the camera side's, no radiance scaling) passes 1 - F, so reflection plus
+/// transmission show the environment's 1; a BTDF scaled by 1 / eta^2 would show F + (1 - F) / 2.25.
+#[test]
+fn an_open_glass_boundary_passes_what_it_does_not_reflect() {
+    let scene = scene_of(
+        vec![quad(Vec3::ZERO, Vec3::Z, 10.0, 0)],
+        vec![glass(0.0)],
+        vec![Light::Environment {
+            radiance: Vec3::ONE,
+            map: None,
+        }],
+    );
+    let camera = Camera::look_at(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::Y, 1e-3);
+    let img = render(&scene, &camera, 4, 256, 4);
+    let got = mean(&[img.get(1, 1), img.get(2, 2)].map(|p| p.truncate()));
+    for c in got.to_array() {
+        assert!(
+            (c - 1.0).abs() < 0.02,
+            "seen through the open boundary: {got}"
+        );
+    }
 }
 
 /// A point light above a thin smooth tinted pane lights a Lambertian floor through it: shadow rays

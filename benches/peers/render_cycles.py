@@ -10,7 +10,7 @@ imports its Cycles add-on as the module `cycles`, and this script's folder is fi
               --bounces B [--threads 2] [--seed 1] [--world 1.0] [--distribution importer|GGX]
               [--tint importer|squared] [--absorption importer|spec] [--anisotropy importer|spec]
               [--iridescence importer|thin-film|spec] [--thin-walled importer|spec]
-              [--lights SPEC|COMPAT] [--env MAP.exr] [--report T.json]
+              [--lights SPEC|COMPAT] [--punctual importer|spec] [--env MAP.exr] [--report T.json]
 
 Why each setting:
 - Unbiased: no sample clamping, no glossy filter, caustics on, light threshold 0, no adaptive
@@ -43,6 +43,10 @@ Why each setting:
   BSDF has no thin-walled mode, so the importer refracts at each surface. This replaces the
   transmission of such materials by the spec's thin-walled BTDF (see `thin_walled`).
 - `--lights COMPAT` reads 1 cd as 1 W/sr (glint's reading); SPEC divides by 683 lm/W.
+- `--punctual spec`: KHR_lights_punctual's lights are points and directions of no size; the importer
+  leaves Blender's sun at its default disc of 0.526 degrees, which BSDF rays can hit, so sunlight
+  reaches through clear glass as caustics that a delta light cannot give. This sets each sun's angle
+  (and each point and spot light's radius) to 0.
 - `--env`: a lat-long map as the world instead of the constant, importance-sampled (Cycles' default
   map resolution, the map's own size). Its centre column faces +X in glint and in Cycles; glint's
   longitude runs one way about +Y, Cycles' may run the other, so a map symmetric about its centre
@@ -76,6 +80,7 @@ def parse_args():
     ap.add_argument("--iridescence", default="importer", choices=["importer", "thin-film", "spec"])
     ap.add_argument("--thin-walled", default="importer", choices=["importer", "spec"])
     ap.add_argument("--lights", default="SPEC", choices=["SPEC", "COMPAT"])
+    ap.add_argument("--punctual", default="importer", choices=["importer", "spec"])
     ap.add_argument("--env", default="", help="lat-long EXR world (replaces --world)")
     ap.add_argument("--report", default="")
     return ap.parse_args()
@@ -359,6 +364,19 @@ def setup_camera(scene, eye, look_at, fov):
     scene.camera = cam
 
 
+def punctual_lights(lights):
+    """Lights of no size, as KHR_lights_punctual defines them; returns the names of those changed."""
+    changed = []
+    for light in lights:
+        if light.type == "SUN" and light.angle != 0.0:
+            light.angle = 0.0
+            changed.append(light.name)
+        elif light.type in ("POINT", "SPOT") and light.shadow_soft_size != 0.0:
+            light.shadow_soft_size = 0.0
+            changed.append(light.name)
+    return changed
+
+
 def setup_render(scene, a):
     """Unbiased CPU Cycles; `a` has width, height, threads, spp, seed, bounces and out."""
     r = scene.render
@@ -403,6 +421,7 @@ def main():
     tinted = square_transmissive_tint(bpy.data.materials) if a.tint == "squared" else []
     absorbing = spec_absorption(bpy.data.materials) if a.absorption == "spec" else []
     aniso = spec_anisotropy(bpy.data.materials) if a.anisotropy == "spec" else []
+    sized = punctual_lights(bpy.data.lights) if a.punctual == "spec" else []
     film, film_skipped = ([], [])
     if a.iridescence != "importer":
         film, film_skipped = thin_film(bpy.data.materials, a.model, os.path.dirname(os.path.abspath(a.out)),
@@ -427,7 +446,7 @@ def main():
         "total_s": time.time() - t_start, "spp": a.spp, "bounces": a.bounces,
         "distribution": a.distribution, "tint_squared": tinted, "spec_absorption": absorbing,
         "spec_anisotropy": aniso, "thin_film": film, "thin_film_not_mapped": film_skipped,
-        "thin_walled": thin,
+        "thin_walled": thin, "punctual": sized,
         "load_average": os.getloadavg()[0],
     }
     print(json.dumps(report))

@@ -315,7 +315,6 @@ impl<'a> Integrator<'a> {
             } else {
                 Vec3::ZERO
             };
-            st.eta_scale *= s.eta * s.eta;
         }
         // After a delta lobe no light sample could have found the emitter hit next, so it counts
         // fully; straight through a thin wall the previous vertex's MIS state holds, since shadow
@@ -330,7 +329,7 @@ impl<'a> Integrator<'a> {
             // The square root of the throughput, as Cycles does, ends fewer paths than the
             // throughput itself: on bunny-cornell (depth 5) noise per sample fell from 0.244 to
             // 0.205 for 5% more time a sample, 0.74x the time to RMSE 0.01 (benches/peers).
-            let q = (st.beta.max_element() * st.eta_scale).sqrt().min(1.0);
+            let q = st.beta.max_element().sqrt().min(1.0);
             if q <= 0.0 || sampler.get_1d(Dim::Roulette, bounce) >= q {
                 return None;
             }
@@ -354,8 +353,6 @@ struct PathState {
     prev: Option<(f32, LightContext)>,
     /// Absorption coefficient of the medium the ray travels through (zero outside any).
     medium: Vec3,
-    /// Product of the eta^2 factors refraction put into `beta`, kept out of Russian roulette.
-    eta_scale: f32,
     /// The RGB channel the path follows since its first dispersive vertex (KHR_materials_dispersion).
     channel: Option<usize>,
 }
@@ -387,7 +384,6 @@ impl Default for PathState {
             beta: Vec3::ONE,
             prev: None,
             medium: Vec3::ZERO,
-            eta_scale: 1.0,
             channel: None,
         }
     }

@@ -334,7 +334,10 @@ impl Bsdf {
             let pdf = lobes.transmit * ggx.g1(o) * d / (4.0 * o.z);
             return (f, pdf);
         }
-        // Rough dielectric refraction (Walter et al. 2007), radiance scaled by 1 / eta^2.
+        // Rough dielectric refraction (Walter et al. 2007) as KHR_materials_volume writes it, with
+        // ior_o^2 over the camera side's: no 1 / eta^2 radiance scaling, which the spec (and Cycles)
+        // leave out, so a path that refracts once and leaves a volume through an open boundary (or
+        // meets light inside it) keeps what it carried.
         let eta = self.eta;
         let mut h = (o + i * eta).normalize_or_zero();
         if h.z < 0.0 {
@@ -347,8 +350,7 @@ impl Bsdf {
         let denom = (ih + oh / eta) * (ih + oh / eta);
         let d = ggx.d(h);
         let (t, film) = self.dielectric_through(oh);
-        let mut f =
-            tint * (t * d * ggx.g2(o, i) * (ih * oh).abs() / (denom * o.z * i.z.abs() * eta * eta));
+        let mut f = tint * (t * d * ggx.g2(o, i) * (ih * oh).abs() / (denom * o.z * i.z.abs()));
         if let Some(film) = film {
             f *= film;
         }
@@ -375,7 +377,6 @@ impl Bsdf {
             pdf,
             delta: false,
             straight: false,
-            eta: 1.0,
         })
     }
 
@@ -386,19 +387,18 @@ impl Bsdf {
         let ggx = self.ggx();
         let pick_reflect = u_lobe < lobes.reflect;
         let pick_transmit = !pick_reflect && u_lobe >= lobes.reflect + lobes.diffuse;
-        let out = |i: Vec3, f: Vec3, pdf: f32, delta: bool, straight: bool, eta: f32| {
+        let out = |i: Vec3, f: Vec3, pdf: f32, delta: bool, straight: bool| {
             (pdf > 0.0 && f != Vec3::ZERO).then(|| BsdfSample {
                 wi: self.frame.to_world(i),
                 f,
                 pdf,
                 delta,
                 straight,
-                eta,
             })
         };
         if smooth && pick_reflect {
             let i = Vec3::new(-o.x, -o.y, o.z);
-            return out(i, self.fresnel(o.z) / o.z, lobes.reflect, true, false, 1.0);
+            return out(i, self.fresnel(o.z) / o.z, lobes.reflect, true, false);
         }
         if (smooth || self.index_matched()) && pick_transmit {
             let mut tint = self.base * ((1.0 - self.metallic) * self.transmission);
@@ -407,11 +407,10 @@ impl Bsdf {
                 tint *= film;
             }
             if self.thin {
-                return out(-o, tint * (t / o.z), lobes.transmit, true, true, 1.0);
+                return out(-o, tint * (t / o.z), lobes.transmit, true, true);
             }
             let i = refract(o, self.eta)?;
-            let f = tint * (t / (-i.z * self.eta * self.eta));
-            return out(i, f, lobes.transmit, true, false, self.eta);
+            return out(i, tint * (t / -i.z), lobes.transmit, true, false);
         }
         let i = if pick_reflect {
             let h = ggx.sample_vndf(o, u);
@@ -443,14 +442,7 @@ impl Bsdf {
             return None;
         }
         let (f, pdf) = self.lobe_mix_eval(o, i);
-        // A diffusely transmitted ray crosses without refracting (no radiance scaling).
-        let diffuse_through = !pick_reflect && !pick_transmit && i.z < 0.0;
-        let eta = if i.z < 0.0 && !self.thin && !diffuse_through {
-            self.eta
-        } else {
-            1.0
-        };
-        out(i, f, pdf, false, false, eta)
+        out(i, f, pdf, false, false)
     }
 
     /// What a shadow ray keeps when it passes straight through this surface from `wo`'s side: the

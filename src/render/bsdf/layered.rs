@@ -81,7 +81,6 @@ impl Bsdf {
             return None;
         }
         let choice = self.layer_choice(wo, o);
-        let mut eta = 1.0;
         let wi = if u_lobe < choice.coat {
             let coat = self.coat?;
             let wi = coat.sample(wo, u)?;
@@ -93,7 +92,6 @@ impl Bsdf {
                     pdf: choice.coat,
                     delta: true,
                     straight: false,
-                    eta: 1.0,
                 });
             }
             wi
@@ -109,7 +107,6 @@ impl Bsdf {
                 s.pdf *= choice.base;
                 return (s.f != Vec3::ZERO).then_some(s);
             }
-            eta = s.eta;
             s.wi
         };
         let (f, pdf) = self.layered_eval(wo, wi);
@@ -119,7 +116,6 @@ impl Bsdf {
             pdf,
             delta: false,
             straight: false,
-            eta,
         })
     }
 }

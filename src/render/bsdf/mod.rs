@@ -118,8 +118,6 @@ pub struct BsdfSample {
     /// The ray continues undeviated through a thin smooth surface; shadow rays see through such
     /// surfaces, so the path keeps the MIS state of the vertex before it.
     pub straight: bool,
-    /// Relative index of refraction crossed (1 unless refracted through a thick surface).
-    pub eta: f32,
 }
 
 impl Bsdf {

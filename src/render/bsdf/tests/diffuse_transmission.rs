@@ -203,11 +203,4 @@ fn diffuse_transmission_transmits_and_only_when_on() {
     assert!(on.eval(o, i).0.min_element() > 0.0);
     // Shadow rays do not see straight through a diffuse transmitter (it scatters).
     assert_eq!(on.straight_transmittance(o), Vec3::ZERO);
-    // A diffusely transmitted sample does not refract: its eta is 1 even into a volume.
-    for k in 0..64 {
-        let s = thick.sample(o, 0.3 + 0.7 * hash(k), Vec2::new(hash(k + 9), hash(k + 19)));
-        if let Some(s) = s.filter(|s| s.wi.z < 0.0) {
-            assert_eq!(s.eta, 1.0);
-        }
-    }
 }
