@@ -112,7 +112,7 @@ fn thick_transmission_tints_at_each_interface() {
     };
     let through = |b: &Bsdf| {
         // The transmission lobe's share of u_lobe is its top end; a delta lobe's f |cos| is its
-        // weight (radiance scaled by 1 / eta^2 on the way in, eta^2 on the way out).
+        // weight, (1 - F) times the tint at each interface.
         let s = b
             .sample(Vec3::Z, 1.0 - 1e-6, Vec2::new(hash(1), hash(2)))
             .unwrap();
@@ -120,6 +120,15 @@ fn thick_transmission_tints_at_each_interface() {
         s.f * s.wi.z.abs()
     };
     let f0 = 0.04f32;
+    // Each crossing alone, in either direction, passes base (1 - F0): no radiance scaling.
+    for entering in [true, false] {
+        let one = through(&glass(entering));
+        let want = base * (1.0 - f0);
+        assert!(
+            (one - want).abs().max_element() < 1e-3,
+            "entering {entering}: {one} vs {want}"
+        );
+    }
     let slab = through(&glass(true)) * through(&glass(false));
     let want = base * base * (1.0 - f0) * (1.0 - f0);
     assert!((slab - want).abs().max_element() < 1e-3, "{slab} vs {want}");
