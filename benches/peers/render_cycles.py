@@ -44,8 +44,8 @@ Why each setting:
   transmission of such materials by the spec's thin-walled BTDF (see `thin_walled`).
 - `--lights COMPAT` reads 1 cd as 1 W/sr (glint's reading); SPEC divides by 683 lm/W.
 - `--punctual spec`: KHR_lights_punctual's lights are points and directions of no size; the importer
-  leaves Blender's sun at its default disc of 0.526 degrees, which BSDF rays can hit, so sunlight
-  reaches through clear glass as caustics that a delta light cannot give. This sets each sun's angle
+  leaves Blender's sun at its default disc of 0.526 degrees, which BSDF rays can hit, so sunlight can
+  reach through clear glass as caustics that a delta light cannot give. This sets each sun's angle
   (and each point and spot light's radius) to 0.
 - `--env`: a lat-long map as the world instead of the constant, importance-sampled (Cycles' default
   map resolution, the map's own size). Its centre column faces +X in glint and in Cycles; glint's
