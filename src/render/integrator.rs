@@ -16,6 +16,14 @@ use crate::scene::Scene;
 
 /// Bounce from which Russian roulette may end paths.
 const ROULETTE_START: u32 = 3;
+
+/// Survival probability per square root of the throughput: paths keep going while their throughput
+/// is at least 1 / ROULETTE_SURVIVAL^2 = 0.44. On bunny-cornell (depth 5) the roulette at 1x was
+/// most of the noise left (sigma 0.206; 0.173 with no roulette): at 1.5x it is 0.179 for 0.87x
+/// the time to RMSE 0.01 (2x: 0.174, 0.82x). On many-emitters, whose noise is the choice among
+/// its lights, more survival buys little (0.447 -> 0.440) and costs time: 1.02x the time to RMSE
+/// 0.01 at 1.5x, 1.06x at 2x (alternated runs, benches/peers/README.md).
+const ROULETTE_SURVIVAL: f32 = 1.5;
 /// Shadow rays stop this fraction short of an area light, so they do not hit the light itself.
 const SHADOW_SHORTEN: f32 = 1e-3;
 /// Most thin transmissive surfaces a shadow ray passes through before it counts as blocked.
@@ -329,7 +337,7 @@ impl<'a> Integrator<'a> {
             // The square root of the throughput, as Cycles does, ends fewer paths than the
             // throughput itself: on bunny-cornell (depth 5) noise per sample fell from 0.244 to
             // 0.205 for 5% more time a sample, 0.74x the time to RMSE 0.01 (benches/peers).
-            let q = st.beta.max_element().sqrt().min(1.0);
+            let q = (ROULETTE_SURVIVAL * st.beta.max_element().sqrt()).min(1.0);
             if q <= 0.0 || sampler.get_1d(Dim::Roulette, bounce) >= q {
                 return None;
             }
