@@ -35,16 +35,21 @@ fn faceted_sphere() -> Mesh {
     m
 }
 
+/// A uniform environment of radiance 1.
+fn white_world() -> Light {
+    Light::Environment {
+        radiance: Vec3::ONE,
+        map: None,
+    }
+}
+
 /// A faceted unit sphere of `material` in a uniform environment of radiance 1.
 fn furnace(material: Material) -> Arc<Scene> {
     Arc::new(Scene {
         meshes: vec![faceted_sphere()],
         instances: vec![Instance::new(0, Mat4::IDENTITY)],
         materials: vec![material],
-        lights: vec![Light::Environment {
-            radiance: Vec3::ONE,
-            map: None,
-        }],
+        lights: vec![white_world()],
         ..Default::default()
     })
 }
@@ -280,10 +285,7 @@ fn absorbing_slab_follows_beer_lambert() {
             quad(Vec3::new(0.0, 0.0, thickness), Vec3::Z, 10.0, 0),
         ],
         vec![medium],
-        vec![Light::Environment {
-            radiance: Vec3::ONE,
-            map: None,
-        }],
+        vec![white_world()],
     );
     let camera = Camera::look_at(Vec3::new(0.0, 0.0, -5.0), Vec3::ZERO, Vec3::Y, 1e-3);
     let img = render(&scene, &camera, 4, 4, 4);
@@ -305,10 +307,7 @@ fn an_open_glass_boundary_passes_what_it_does_not_reflect() {
     let scene = scene_of(
         vec![quad(Vec3::ZERO, Vec3::Z, 10.0, 0)],
         vec![glass(0.0)],
-        vec![Light::Environment {
-            radiance: Vec3::ONE,
-            map: None,
-        }],
+        vec![white_world()],
     );
     let camera = Camera::look_at(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::Y, 1e-3);
     let img = render(&scene, &camera, 4, 256, 4);

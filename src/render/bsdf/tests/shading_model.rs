@@ -120,16 +120,16 @@ fn thick_transmission_tints_at_each_interface() {
         s.f * s.wi.z.abs()
     };
     let f0 = 0.04f32;
+    let [enter, leave] = [true, false].map(|entering| through(&glass(entering)));
     // Each crossing alone, in either direction, passes base (1 - F0): no radiance scaling.
-    for entering in [true, false] {
-        let one = through(&glass(entering));
+    for (label, one) in [("entering", enter), ("leaving", leave)] {
         let want = base * (1.0 - f0);
         assert!(
             (one - want).abs().max_element() < 1e-3,
-            "entering {entering}: {one} vs {want}"
+            "{label}: {one} vs {want}"
         );
     }
-    let slab = through(&glass(true)) * through(&glass(false));
+    let slab = enter * leave;
     let want = base * base * (1.0 - f0) * (1.0 - f0);
     assert!((slab - want).abs().max_element() < 1e-3, "{slab} vs {want}");
 }
