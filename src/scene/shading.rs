@@ -10,7 +10,7 @@ pub enum Layering {
     #[default]
     Spec,
     /// Albedo scaling, as Blender's Principled BSDF layers it: the diffuse gets 1 - E(N.V), the
-    /// specular layer's albedo estimated by its Fresnel at the view's incidence on the normal.
+    /// specular layer's albedo estimated by its Fresnel averaged over the rough lobe at the view.
     Albedo,
 }
 

@@ -9,6 +9,7 @@ use glam::{Vec2, Vec3};
 use super::diffuse_transmission::DiffuseTransmission;
 use super::energy;
 use super::fresnel::{fresnel_exact, schlick};
+use super::layer_albedo;
 use super::microfacet::Ggx;
 use super::{choice_probabilities, luminance, Bsdf, BsdfSample};
 use crate::sample::warp::cosine_hemisphere;
@@ -101,7 +102,12 @@ impl Bsdf {
 
     /// `fresnel_dielectric` without the film: 1 under total internal reflection.
     fn plain_fresnel_dielectric(&self, cos: f32) -> f32 {
-        let f = fresnel_exact(cos, self.eta);
+        self.specular_share(fresnel_exact(cos, self.eta))
+    }
+
+    /// The layer's reflectance for an untinted Fresnel `f`: scaled by the specular weight, tinted
+    /// by the specular colour (its strongest channel), and 1 under total internal reflection.
+    fn specular_share(&self, f: f32) -> f32 {
         if f >= 1.0 {
             1.0
         } else if self.specular_color == Vec3::ONE {
@@ -157,13 +163,19 @@ impl Bsdf {
     /// What the dielectric specular layer leaves the diffuse under it, at view cosine `cos_o` and
     /// microfacet cosine `oh`: 1 - F(V.H) (the spec's fresnel_mix, with a film's share per channel
     /// as `dielectric_through` gives it), or 1 - E(N.V) (albedo scaling, E estimated by the Fresnel
-    /// at N.V as Cycles does, times the multiple-scattering share; as Cycles' layering, the
-    /// strongest channel of a film's albedo, so that no channel gains energy).
+    /// as Cycles does: the Fresnel averaged over the rough lobe at N.V, times the
+    /// multiple-scattering share; with a thin film, or seen from the denser side, the Fresnel at
+    /// N.V, as Cycles falls back to; as Cycles' layering, the strongest channel of a film's
+    /// albedo, so that no channel gains energy).
     fn diffuse_share(&self, cos_o: f32, oh: f32) -> (f32, Option<Vec3>) {
         match self.model.layering {
             Layering::Spec => self.dielectric_through(oh),
             Layering::Albedo => {
-                let mut e = self.fresnel_dielectric(cos_o);
+                let mut e = if self.alpha > 0.0 && self.eta > 1.0 && self.iridescence.is_none() {
+                    self.specular_share(layer_albedo::lobe_fresnel(&self.ggx(), cos_o, self.eta))
+                } else {
+                    self.fresnel_dielectric(cos_o)
+                };
                 if self.model.ggx == GgxScattering::Multi && self.alpha > 0.0 {
                     let fss = self.specular * energy::dielectric_average(self.eta);
                     e *= energy::darkening(&self.ggx(), cos_o, fss);

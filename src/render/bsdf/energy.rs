@@ -24,13 +24,13 @@ fn node(k: usize) -> f32 {
     k as f32 / (N - 1) as f32
 }
 
-/// The white lobe's albedo at view cosine `mu`: mean of G2 / G1 over visible normals (the VNDF
-/// estimator with F = 1), zero where the reflected direction falls below the surface.
-pub(crate) fn white_albedo(alpha: f32, mu: f32) -> f32 {
+/// Visits the stratified visible-normal reflections of the white lobe at view cosine `mu` that
+/// stay above the surface: each one's V.H and weight G2 / G1 (the VNDF estimator's term with F = 1),
+/// out of `STRATA`^2 samples.
+pub(super) fn for_each_reflection(alpha: f32, mu: f32, mut visit: impl FnMut(f32, f32)) {
     let ggx = Ggx::iso(alpha.max(1e-4));
     let mu = mu.clamp(1e-3, 1.0);
     let o = Vec3::new((1.0 - mu * mu).sqrt(), 0.0, mu);
-    let mut sum = 0.0f64;
     for a in 0..STRATA {
         for b in 0..STRATA {
             let u = Vec2::new(
@@ -38,12 +38,20 @@ pub(crate) fn white_albedo(alpha: f32, mu: f32) -> f32 {
                 (b as f32 + 0.5) / STRATA as f32,
             );
             let h = ggx.sample_vndf(o, u);
-            let i = 2.0 * o.dot(h) * h - o;
+            let oh = o.dot(h);
+            let i = 2.0 * oh * h - o;
             if i.z > 0.0 {
-                sum += (ggx.g2(o, i) / ggx.g1(o)) as f64;
+                visit(oh, ggx.g2(o, i) / ggx.g1(o));
             }
         }
     }
+}
+
+/// The white lobe's albedo at view cosine `mu`: mean of G2 / G1 over visible normals, zero where
+/// the reflected direction falls below the surface.
+pub(crate) fn white_albedo(alpha: f32, mu: f32) -> f32 {
+    let mut sum = 0.0f64;
+    for_each_reflection(alpha, mu, |_, w| sum += w as f64);
     (sum / (STRATA * STRATA) as f64) as f32
 }
 
@@ -66,10 +74,10 @@ fn table() -> &'static AlbedoTable {
     })
 }
 
-/// Linear interpolation of `at(k)` at `x` in 0..1 over the nodes.
-fn lerp_nodes(x: f32, at: impl Fn(usize) -> f32) -> f32 {
-    let t = x.clamp(0.0, 1.0) * (N - 1) as f32;
-    let k = (t as usize).min(N - 2);
+/// Linear interpolation of `at(k)` at `x` in 0..1 over `n` evenly spaced nodes.
+pub(super) fn lerp_nodes(x: f32, n: usize, at: impl Fn(usize) -> f32) -> f32 {
+    let t = x.clamp(0.0, 1.0) * (n - 1) as f32;
+    let k = (t as usize).min(n - 2);
     let f = t - k as f32;
     at(k) * (1.0 - f) + at(k + 1) * f
 }
@@ -78,8 +86,8 @@ fn lerp_nodes(x: f32, at: impl Fn(usize) -> f32) -> f32 {
 fn lookup(ggx: &Ggx, mu: f32) -> (f32, f32) {
     let t = table();
     let rough = (ggx.ax * ggx.ay).sqrt().sqrt();
-    let e = lerp_nodes(rough, |r| lerp_nodes(mu, |m| t.e[r][m]));
-    let e_avg = lerp_nodes(rough, |r| t.e_avg[r]);
+    let e = lerp_nodes(rough, N, |r| lerp_nodes(mu, N, |m| t.e[r][m]));
+    let e_avg = lerp_nodes(rough, N, |r| t.e_avg[r]);
     (e.max(1e-3), e_avg)
 }
 

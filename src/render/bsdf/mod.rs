@@ -10,6 +10,7 @@ mod dispersion;
 mod energy;
 mod fresnel;
 mod iridescence;
+mod layer_albedo;
 mod layered;
 mod microfacet;
 pub mod sheen;

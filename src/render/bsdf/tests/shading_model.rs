@@ -26,8 +26,8 @@ fn white_dielectric() -> Bsdf {
 
 /// The glTF spec's fresnel_mix weights the diffuse by 1 - F(V.H), which at grazing views is more
 /// than what the specular layer leaves: a white dielectric reflects 1.069 at cos 0.4 and 1.224 at
-/// cos 0.15 (pinned here, as the README says). Albedo scaling keeps it at most 1 (and, its estimate
-/// being the Fresnel at N.V, which is more than a rough lobe reflects at grazing, below 1 there).
+/// cos 0.15 (pinned here, as the README says). Albedo scaling keeps it at most 1 (below 1 where the
+/// single-scatter lobe loses energy).
 #[test]
 fn spec_layering_exceeds_one_at_grazing_and_albedo_scaling_does_not() {
     let spec = white_dielectric();
@@ -47,6 +47,30 @@ fn spec_layering_exceeds_one_at_grazing_and_albedo_scaling_does_not() {
                 assert!((a - 1.0).abs() < 0.01, "{ggx:?} normal incidence: {a}");
             }
         }
+    }
+}
+
+/// Albedo scaling gives the diffuse what the rough specular layer leaves of a white lobe: 1 - R / E,
+/// with R the layer's own reflectance (the material with a black base) and E the white lobe's
+/// albedo. At grazing views that is well above 1 - F(N.V) (0.68 against 0.56 at cos 0.15 for
+/// roughness 0.3), the Fresnel of the view the tilted microfacets do not see.
+#[test]
+fn albedo_scaling_leaves_the_diffuse_what_the_rough_layer_does_not_reflect() {
+    let dielectric = |base: Vec3| {
+        let b = Bsdf::new(Frame::from_normal(Vec3::Z), base, 0.0, 0.3, 1.0)
+            .with_dielectric(0.0, 1.5, false, true);
+        with_model(b, Layering::Albedo, GgxScattering::Single)
+    };
+    for cos in [0.9f32, 0.5, 0.15] {
+        let layer = albedo(&dielectric(Vec3::ZERO), view(cos), 400_000);
+        let total = albedo(&dielectric(Vec3::ONE), view(cos), 400_000);
+        let want = 1.0 - layer / white_albedo(0.09, cos) as f64;
+        eprintln!("cos {cos}: diffuse {:.4}, want {want:.4}", total - layer);
+        assert!(
+            (total - layer - want).abs() < 0.01,
+            "cos {cos}: diffuse {}, want {want}",
+            total - layer
+        );
     }
 }
 
