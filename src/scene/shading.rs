@@ -10,7 +10,8 @@ pub enum Layering {
     #[default]
     Spec,
     /// Albedo scaling, as Blender's Principled BSDF layers it: the diffuse gets 1 - E(N.V), the
-    /// specular layer's albedo estimated by its Fresnel averaged over the rough lobe at the view.
+    /// specular layer's albedo estimated as Cycles does, by its Fresnel over the rough lobe's
+    /// visible normals at the view.
     Albedo,
 }
 

@@ -162,8 +162,8 @@ impl Bsdf {
 
     /// What the dielectric specular layer leaves the diffuse under it, at view cosine `cos_o` and
     /// microfacet cosine `oh`: 1 - F(V.H) (the spec's fresnel_mix, with a film's share per channel
-    /// as `dielectric_through` gives it), or 1 - E(N.V) (albedo scaling, E estimated by the Fresnel
-    /// as Cycles does: the Fresnel averaged over the rough lobe at N.V, times the
+    /// as `dielectric_through` gives it), or 1 - E(N.V) (albedo scaling, E estimated as Cycles
+    /// does, from the Fresnel over the rough lobe's visible normals at N.V, times the
     /// multiple-scattering share; with a thin film, or seen from the denser side, the Fresnel at
     /// N.V, as Cycles falls back to; as Cycles' layering, the strongest channel of a film's
     /// albedo, so that no channel gains energy).
@@ -172,7 +172,7 @@ impl Bsdf {
             Layering::Spec => self.dielectric_through(oh),
             Layering::Albedo => {
                 let mut e = if self.alpha > 0.0 && self.eta > 1.0 && self.iridescence.is_none() {
-                    self.specular_share(layer_albedo::lobe_fresnel(&self.ggx(), cos_o, self.eta))
+                    self.specular_share(layer_albedo::estimate(&self.ggx(), cos_o, self.eta))
                 } else {
                     self.fresnel_dielectric(cos_o)
                 };

@@ -11,7 +11,7 @@ use super::microfacet::Ggx;
 /// Table nodes along roughness (sqrt(alpha), 0..1) and along the view cosine (0..1).
 const N: usize = 32;
 /// Stratified VNDF samples per node and axis.
-const STRATA: usize = 24;
+pub(super) const STRATA: usize = 24;
 
 /// The white (F = 1) single-scatter GGX albedo E(roughness, cos) and its cosine-weighted hemispherical
 /// average E_avg(roughness).
