@@ -7,7 +7,7 @@ they are beyond glint's own seed-to-seed noise. A bench, not a test (minutes per
                 [--spp 256] [--width 320] [--height 240] [--depth 8] [--fov 35]
                 [--distribution importer|GGX|MULTI_GGX] [--tint importer|squared]
                 [--absorption importer|spec] [--anisotropy importer|spec] [--iridescence importer|thin-film|spec]
-                [--thin-walled importer|spec] [--punctual spec|importer] [--strip KHR_materials_sheen ...]
+                [--thin-walled importer|spec] [--punctual spec|importer] [--srgb-filter spec|importer] [--strip KHR_materials_sheen ...]
                 [--glint-args '--layering albedo --ggx multi'] [--cycles-from OTHER_OUTDIR]
 
 --glint-args are added to both glint renders; --cycles-from reuses another run's cycles.exr per model
@@ -182,7 +182,7 @@ def measure(a, name, path, out):
            "--bounces", str(a.depth - 1), *view, "--threads", "2", "--distribution", a.distribution,
            "--tint", a.tint, "--absorption", a.absorption, "--anisotropy", a.anisotropy,
            "--iridescence", a.iridescence, "--thin-walled", a.thin_walled,
-           "--punctual", a.punctual, "--report", str(d / "cycles.json"), "--lights", "COMPAT" if name in COMPAT_LIGHTS else "SPEC"]
+           "--punctual", a.punctual, "--srgb-filter", a.srgb_filter, "--report", str(d / "cycles.json"), "--lights", "COMPAT" if name in COMPAT_LIGHTS else "SPEC"]
     reuse = Path(a.cycles_from) / name / "cycles.exr" if a.cycles_from else None
     if reuse is not None and reuse.is_file():
         shutil.copyfile(reuse, d / "cycles.exr")
@@ -203,7 +203,7 @@ def table(results, a):
     lines = [f"{a.width}x{a.height}, {a.spp} spp, glint --max-depth {a.depth} (Cycles {a.depth - 1} bounces), "
              f"distribution {a.distribution}, tint {a.tint}, absorption {a.absorption}, "
              f"anisotropy {a.anisotropy}, iridescence {a.iridescence}, thin-walled {a.thin_walled}, "
-             f"punctual {a.punctual}, "
+             f"punctual {a.punctual}, srgb filter {a.srgb_filter}, "
              f"glint args '{a.glint_args}'"
              + (f", without {', '.join(a.strip)}" if a.strip else ""), "",
              "| model | glint/Cycles mean | rmad | glint noise | excess | within targets |",
@@ -239,6 +239,8 @@ def main():
     ap.add_argument("--strip", action="append", default=[], metavar="EXTENSION",
                     help="take this material extension out of the model for both renderers")
     ap.add_argument("--absorption", default="spec", choices=["importer", "spec"])
+    ap.add_argument("--srgb-filter", default="spec", choices=["importer", "spec"],
+                    help="spec: Cycles interpolates sRGB textures' decoded values, as glint (see render_cycles.py)")
     ap.add_argument("--punctual", default="spec", choices=["importer", "spec"],
                     help="spec: Blender's lights of no size, as KHR_lights_punctual's (see render_cycles.py)")
     a = ap.parse_args()
