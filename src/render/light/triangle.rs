@@ -25,17 +25,33 @@ pub(super) struct Triangle {
     /// World-space vertices.
     v: [Vec3; 3],
     area: f32,
+    /// Unit normal (either side), and the bounding sphere about the centroid: what the cheap
+    /// bounds on the solid angle need.
+    n: Vec3,
+    centre: Vec3,
+    r2: f32,
 }
 
 impl Triangle {
     pub fn new(scene: &Scene, inst: u32, prim: u32) -> Self {
-        let v = scene.world_triangle(inst, prim);
-        let area = 0.5 * (v[1] - v[0]).cross(v[2] - v[0]).length();
+        Self::from_vertices(inst, prim, scene.world_triangle(inst, prim))
+    }
+
+    fn from_vertices(inst: u32, prim: u32, v: [Vec3; 3]) -> Self {
+        let cross = (v[1] - v[0]).cross(v[2] - v[0]);
+        let centre = (v[0] + v[1] + v[2]) / 3.0;
+        let r2 = v
+            .map(|v| v.distance_squared(centre))
+            .into_iter()
+            .fold(0.0, f32::max);
         Self {
             inst,
             prim,
             v,
-            area,
+            area: 0.5 * cross.length(),
+            n: cross.normalize_or_zero(),
+            centre,
+            r2,
         }
     }
 
@@ -124,17 +140,22 @@ impl Triangle {
     /// The solid angle the triangle subtends from `p` and its unit corner directions, where it
     /// is sampled by solid angle (where it looks larger than `NEAR_SOLID_ANGLE`).
     fn solid_angle(&self, p: Vec3) -> Option<(f32, [Vec3; 3])> {
-        // First a bound without trigonometry: the cap of the bounding sphere about the centroid,
-        // of solid angle 2 pi (1 - cos) <= pi r^2 / (d^2 - r^2).
-        let v = &self.v;
-        let centre = (v[0] + v[1] + v[2]) / 3.0;
-        let r2 = v
-            .map(|v| v.distance_squared(centre))
-            .into_iter()
-            .fold(0.0, f32::max);
-        let excess = centre.distance_squared(p) - r2;
-        if excess > 0.0 && PI * r2 < NEAR_SOLID_ANGLE * excess {
-            return None;
+        // First bounds without trigonometry, from outside the bounding sphere about the centroid:
+        // its cap, of solid angle 2 pi (1 - cos) <= pi r^2 / (d^2 - r^2); and, since every point
+        // of the triangle is at least d - r away and at the height h of `p` over its plane, the
+        // integral of cos / dist^2 = h / dist^3 over its area, at most A h / (d - r)^3 (tighter
+        // off to the side and far away: on bunny-cornell most points of the box).
+        let d2 = self.centre.distance_squared(p);
+        let excess = d2 - self.r2;
+        if excess > 0.0 {
+            if PI * self.r2 < NEAR_SOLID_ANGLE * excess {
+                return None;
+            }
+            let near = d2.sqrt() - self.r2.sqrt();
+            let h = self.n.dot(p - self.v[0]).abs();
+            if near > 0.0 && self.area * h < NEAR_SOLID_ANGLE * near * near * near {
+                return None;
+            }
         }
         let [a, b, c] = self.v.map(|v| (v - p).normalize_or_zero());
         let omega = spherical_triangle_area(a, b, c);
@@ -219,12 +240,7 @@ mod tests {
             let centre = Vec3::new(r(), r(), r()) * 2.0;
             let size = 0.05 + (r() + 1.0);
             let v = [0; 3].map(|_| centre + Vec3::new(r(), r(), r()) * size);
-            let t = Triangle {
-                inst: 0,
-                prim: 0,
-                v,
-                area: 0.5 * (v[1] - v[0]).cross(v[2] - v[0]).length(),
-            };
+            let t = Triangle::from_vertices(0, 0, v);
             let p = Vec3::new(r(), r(), r());
             let exact = spherical_triangle_area(
                 (v[0] - p).normalize(),
