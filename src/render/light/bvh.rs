@@ -15,9 +15,11 @@ use super::bounds::{Bounds4, LightBounds, PackedBounds};
 use crate::geometry::Aabb;
 use crate::sample::ONE_MINUS_EPS;
 
-/// Most lights in a leaf, chosen among by power: fewer tree levels to descend (each costs two
-/// importance bounds), at the price of a blind choice among a few neighbours.
-const LEAF_LIGHTS: usize = 4;
+/// Most lights in a leaf, chosen among by power. One: every choice is made by importance. With
+/// leaves of four (a blind choice among neighbours, one four-wide level fewer) many-emitters had
+/// 1.11x the variance per sample for 0.98x the time a sample, 1.11x the time to RMSE 0.01 (two:
+/// 1.07x; benches/peers/README.md).
+const LEAF_LIGHTS: usize = 1;
 /// Buckets per axis of the split search.
 const BUCKETS: usize = 12;
 /// From this depth on, nodes split in the middle, so no trail outgrows its 64 bits (2^32 lights).
