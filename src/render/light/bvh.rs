@@ -2,11 +2,12 @@
 //! a tree, one chosen per shading point by descending it in proportion to each child's
 //! `LightBounds::importance` there; lights at infinity are chosen beside it by power.
 //!
-//! The tree is built binary (the surface-area-orientation split) and then collapsed two levels at a
-//! time into four-wide nodes, whose four children's bounds one SIMD evaluation gives: half the
-//! levels and a quarter of the evaluations of the binary descent. The probability of a choice is
-//! the product of the child probabilities along the light's path, which every light keeps as a
-//! trail of 2-bit lane numbers, so `pmf` repeats `choose`'s arithmetic exactly.
+//! The tree is built binary (the surface-area-orientation split) and then collapsed three levels at
+//! a time into eight-wide nodes, whose eight children's bounds two four-wide SIMD evaluations give
+//! side by side: a third of the levels of the binary descent, whose steps wait on one another. The
+//! probability of a choice is the product of the child probabilities along the light's path, which
+//! every light keeps as a trail of 3-bit lane numbers, so `pmf` repeats `choose`'s arithmetic
+//! exactly.
 
 use glam::Vec3;
 
@@ -16,14 +17,18 @@ use crate::geometry::Aabb;
 use crate::sample::ONE_MINUS_EPS;
 
 /// Most lights in a leaf, chosen among by power. One: every choice is made by importance. With
-/// leaves of four (a blind choice among neighbours, one four-wide level fewer) many-emitters had
-/// 1.11x the variance per sample for 0.98x the time a sample, 1.11x the time to RMSE 0.01 (two:
-/// 1.07x; benches/peers/README.md).
+/// leaves of four (a blind choice among neighbours, a level fewer) many-emitters had 1.11x the
+/// variance per sample for 0.98x the time a sample, 1.11x the time to RMSE 0.01 (two: 1.07x;
+/// benches/peers/README.md, with four-wide nodes).
 const LEAF_LIGHTS: usize = 1;
 /// Buckets per axis of the split search.
 const BUCKETS: usize = 12;
-/// From this depth on, nodes split in the middle, so no trail outgrows its 64 bits (2^32 lights).
-const BALANCED_FROM_DEPTH: u32 = 32;
+/// From this depth on, nodes split in the middle, so no trail outgrows its 64 bits: 21 wide levels
+/// hold 63 binary ones, 31 of them for 2^32 lights.
+const BALANCED_FROM_DEPTH: u32 = 31;
+/// Children of a wide node, and the bits of a trail that name one.
+const LANES: usize = 8;
+const LANE_BITS: u32 = 3;
 
 #[derive(Clone, Debug)]
 struct Node {
@@ -44,19 +49,29 @@ struct LeafLight {
     cdf: f32,
 }
 
-/// A node of the four-wide tree that the choice descends: up to four children side by side.
+/// A node of the eight-wide tree that the choice descends: up to eight children side by side.
 #[derive(Clone, Copy)]
 struct WideNode {
-    bounds: Bounds4,
+    bounds: [Bounds4; 2],
     /// Per lane: an interior child's index in `LightBvh::wide`, or a leaf's first light in
     /// `LightBvh::leaf_lights`.
-    index: [u32; 4],
+    index: [u32; LANES],
     /// Per lane: a leaf's number of lights; 0 for an interior child (and an empty lane, whose
     /// importance is zero, so it is never taken).
-    lights: [u32; 4],
+    lights: [u32; LANES],
 }
 
-/// Where a light sits: its trail from the root (bits 2k and 2k + 1: the lane taken at wide depth
+impl WideNode {
+    /// The importance bounds of the eight lanes (two independent four-wide evaluations).
+    #[inline(always)]
+    fn importance(&self, p: Vec3, n: Vec3) -> [f32; LANES] {
+        let [a, b] = &self.bounds;
+        let (lo, hi) = (a.importance(p, n), b.importance(p, n));
+        std::array::from_fn(|l| if l < 4 { lo[l] } else { hi[l - 4] })
+    }
+}
+
+/// Where a light sits: its trail from the root (bits 3k to 3k + 2: the lane taken at wide depth
 /// k) and its share of its leaf.
 #[derive(Clone, Copy, Debug)]
 enum Place {
@@ -146,9 +161,9 @@ impl LightBvh {
         let mut at = 0;
         loop {
             let node = &self.wide[at];
-            let shares = shares(node.bounds.importance(p, n))?;
+            let shares = shares(node.importance(p, n))?;
             // The lane whose interval of [0, 1) holds u; past the last (rounding), the last taken.
-            let (mut lane, mut below, mut sum) = (4, 0.0, 0.0);
+            let (mut lane, mut below, mut sum) = (0, 0.0, 0.0);
             for (l, &s) in shares.iter().enumerate() {
                 if s > 0.0 {
                     (lane, below) = (l, sum);
@@ -185,32 +200,32 @@ impl LightBvh {
         let mut at = 0;
         loop {
             let node = &self.wide[at];
-            let Some(shares) = shares(node.bounds.importance(p, n)) else {
+            let Some(shares) = shares(node.importance(p, n)) else {
                 return 0.0;
             };
-            let lane = (trail & 3) as usize;
+            let lane = (trail & (LANES as u64 - 1)) as usize;
             pmf *= shares[lane];
             if node.lights[lane] > 0 {
                 return pmf * share;
             }
             at = node.index[lane] as usize;
-            trail >>= 2;
+            trail >>= LANE_BITS;
         }
     }
 }
 
-/// Each lane's share of the four importances, `None` when none can light the point (the ratios in
+/// Each lane's share of the importances, `None` when none can light the point (the ratios in
 /// f64, an infinite bound taken as the largest finite one, so that huge bounds near a point light
 /// still divide).
 #[inline(always)]
-fn shares(importance: [f32; 4]) -> Option<[f32; 4]> {
+fn shares(importance: [f32; LANES]) -> Option<[f32; LANES]> {
     let imp = importance.map(|x| x.min(f32::MAX) as f64);
     let sum: f64 = imp.iter().sum();
     (sum > 0.0).then(|| imp.map(|x| (x / sum) as f32))
 }
 
 /// Makes the wide node for binary node `at` (interior, or the root leaf): its lanes are `at`'s
-/// grandchildren, or children where those are leaves. Each lane at wide `depth` is numbered into
+/// descendants three levels down, or nearer ones where those are leaves. Each lane at wide `depth` is numbered into
 /// the trails of the lights below it; returns the node's index in `wide`.
 fn collapse(
     binary: &[Node],
@@ -221,30 +236,32 @@ fn collapse(
     places: &mut [Place],
 ) -> u32 {
     let node = &binary[at];
-    let lanes: Vec<usize> = if node.lights > 0 {
-        vec![at]
-    } else {
-        [at + 1, node.index as usize]
-            .into_iter()
-            .flat_map(|c| {
-                let child = &binary[c];
-                if child.lights > 0 {
-                    vec![c]
-                } else {
-                    vec![c + 1, child.index as usize]
-                }
-            })
-            .collect()
-    };
+    let mut lanes = vec![at];
+    if node.lights == 0 {
+        for _ in 0..LANE_BITS {
+            lanes = lanes
+                .into_iter()
+                .flat_map(|c| {
+                    let child = &binary[c];
+                    if child.lights > 0 {
+                        vec![c]
+                    } else {
+                        vec![c + 1, child.index as usize]
+                    }
+                })
+                .collect();
+        }
+    }
     let bounds: Vec<PackedBounds> = lanes.iter().map(|&b| binary[b].bounds).collect();
+    let (lo, hi) = bounds.split_at(bounds.len().min(4));
     let me = wide.len();
     wide.push(WideNode {
-        bounds: Bounds4::new(&bounds),
-        index: [0; 4],
-        lights: [0; 4],
+        bounds: [Bounds4::new(lo), Bounds4::new(hi)],
+        index: [0; LANES],
+        lights: [0; LANES],
     });
     for (l, &b) in lanes.iter().enumerate() {
-        let lane_trail = trail | (l as u64) << (2 * depth);
+        let lane_trail = trail | (l as u64) << (LANE_BITS * depth);
         let child = &binary[b];
         if child.lights > 0 {
             let first = child.index as usize;
