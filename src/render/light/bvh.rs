@@ -26,7 +26,9 @@ const BUCKETS: usize = 12;
 /// From this depth on, nodes split in the middle, so no trail outgrows its 64 bits: 21 wide levels
 /// hold 63 binary ones, 31 of them for 2^32 lights.
 const BALANCED_FROM_DEPTH: u32 = 31;
-/// Children of a wide node, and the bits of a trail that name one.
+/// Children of a wide node, and the bits of a trail that name one. Sixteen (four evaluations)
+/// took many-emitters' sigma from 0.405 to 0.393 but cost 15% more a sample: 1.09x the time to
+/// RMSE 0.01.
 const LANES: usize = 8;
 const LANE_BITS: u32 = 3;
 
@@ -52,7 +54,7 @@ struct LeafLight {
 /// A node of the eight-wide tree that the choice descends: up to eight children side by side.
 #[derive(Clone, Copy)]
 struct WideNode {
-    bounds: [Bounds4; 2],
+    bounds: [Bounds4; LANES / 4],
     /// Per lane: an interior child's index in `LightBvh::wide`, or a leaf's first light in
     /// `LightBvh::leaf_lights`.
     index: [u32; LANES],
@@ -62,12 +64,11 @@ struct WideNode {
 }
 
 impl WideNode {
-    /// The importance bounds of the eight lanes (two independent four-wide evaluations).
+    /// The importance bounds of the lanes (independent four-wide evaluations).
     #[inline(always)]
     fn importance(&self, p: Vec3, n: Vec3) -> [f32; LANES] {
-        let [a, b] = &self.bounds;
-        let (lo, hi) = (a.importance(p, n), b.importance(p, n));
-        std::array::from_fn(|l| if l < 4 { lo[l] } else { hi[l - 4] })
+        let quads = self.bounds.map(|b| b.importance(p, n));
+        std::array::from_fn(|l| quads[l / 4][l % 4])
     }
 }
 
@@ -253,10 +254,10 @@ fn collapse(
         }
     }
     let bounds: Vec<PackedBounds> = lanes.iter().map(|&b| binary[b].bounds).collect();
-    let (lo, hi) = bounds.split_at(bounds.len().min(4));
+    let mut quads = bounds.chunks(4);
     let me = wide.len();
     wide.push(WideNode {
-        bounds: [Bounds4::new(lo), Bounds4::new(hi)],
+        bounds: std::array::from_fn(|_| Bounds4::new(quads.next().unwrap_or(&[]))),
         index: [0; LANES],
         lights: [0; LANES],
     });
