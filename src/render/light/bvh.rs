@@ -67,8 +67,12 @@ impl WideNode {
     /// The importance bounds of the lanes (independent four-wide evaluations).
     #[inline(always)]
     fn importance(&self, p: Vec3, n: Vec3) -> [f32; LANES] {
-        let quads = self.bounds.map(|b| b.importance(p, n));
-        std::array::from_fn(|l| quads[l / 4][l % 4])
+        // A plain loop: through `map` or `from_fn` the evaluations were copied or not inlined.
+        let mut out = [0.0; LANES];
+        for (q, b) in self.bounds.iter().enumerate() {
+            out[4 * q..4 * q + 4].copy_from_slice(&b.importance(p, n));
+        }
+        out
     }
 }
 
