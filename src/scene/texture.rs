@@ -1,5 +1,6 @@
-//! Textures as 8-bit RGBA images with glTF's wrap modes, sampled bilinearly into linear colour.
-//! sRGB textures (base colour, emission) are decoded through a table; data textures stay linear.
+//! Textures as 8-bit RGBA images with glTF's wrap modes, sampled bilinearly (or by nearest texel)
+//! into linear colour. sRGB textures (base colour, emission) are decoded through a table; data
+//! textures stay linear.
 
 use std::sync::OnceLock;
 
@@ -32,6 +33,16 @@ impl Wrap {
     }
 }
 
+/// How a lookup between texel centres is filtered. There are no mip levels (pixel-area sampling
+/// averages minified texels), so one filter serves magnification and minification.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Filter {
+    #[default]
+    Linear,
+    /// The texel holding the point: pixel art, lookup tables and ID maps stay crisp.
+    Nearest,
+}
+
 #[derive(Clone, Debug)]
 pub struct Texture {
     pub name: String,
@@ -43,6 +54,7 @@ pub struct Texture {
     pub srgb: bool,
     pub wrap_s: Wrap,
     pub wrap_t: Wrap,
+    pub filter: Filter,
 }
 
 fn srgb_table() -> &'static [f32; 256] {
@@ -68,10 +80,20 @@ impl Texture {
         }
     }
 
-    /// Bilinear lookup at `uv` (texel centres at half-integers), honouring the wrap modes.
+    /// Lookup at `uv` (texel centres at half-integers) through the texture's filter, honouring
+    /// the wrap modes.
     pub fn sample(&self, uv: Vec2) -> Vec4 {
         if self.width == 0 || self.height == 0 || !uv.is_finite() {
             return Vec4::ONE;
+        }
+        if self.filter == Filter::Nearest {
+            // Floats beyond i64 saturate in the cast, and every wrap maps those into range.
+            let x = (uv.x * self.width as f32).floor() as i64;
+            let y = (uv.y * self.height as f32).floor() as i64;
+            return self.texel(
+                self.wrap_s.index(x, self.width),
+                self.wrap_t.index(y, self.height),
+            );
         }
         let x = uv.x * self.width as f32 - 0.5;
         let y = uv.y * self.height as f32 - 0.5;
@@ -105,6 +127,26 @@ mod tests {
             srgb: false,
             wrap_s: wrap,
             wrap_t: wrap,
+            filter: Filter::Linear,
+        }
+    }
+
+    #[test]
+    fn nearest_takes_the_texel_holding_the_point() {
+        let t = Texture {
+            filter: Filter::Nearest,
+            ..checker(Wrap::Repeat)
+        };
+        // Linear would give 0.5 at the border between the two texels and 0.25 a quarter before.
+        assert_eq!(t.sample(Vec2::new(0.49, 0.5)).x, 0.0);
+        assert_eq!(t.sample(Vec2::new(0.5, 0.5)).x, 1.0);
+        assert_eq!(t.sample(Vec2::new(0.99, 0.5)).x, 1.0);
+        // Wrapped: u = 1.25 is texel 0 again, u = -0.25 texel 1.
+        assert_eq!(t.sample(Vec2::new(1.25, 0.5)).x, 0.0);
+        assert_eq!(t.sample(Vec2::new(-0.25, 0.5)).x, 1.0);
+        for u in [1e30, -1e30] {
+            let v = t.sample(Vec2::new(u, 0.5)).x;
+            assert!(v == 0.0 || v == 1.0, "at {u}: {v}");
         }
     }
 

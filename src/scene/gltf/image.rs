@@ -6,7 +6,7 @@ use std::rc::Rc;
 use super::accessor::{uri_decodes, view_bytes};
 use super::error::ImageError;
 use super::Loader;
-use crate::scene::{Texture, Wrap};
+use crate::scene::{Filter, Texture, Wrap};
 
 /// Decoded image pixels, shared by the sRGB and linear variants of a texture.
 pub(super) type Pixels = crate::scene::decode::Rgba8;
@@ -41,6 +41,7 @@ impl Loader<'_> {
                 srgb,
                 wrap_s: wrap(sampler.wrap_s()),
                 wrap_t: wrap(sampler.wrap_t()),
+                filter: filter(sampler.min_filter(), sampler.mag_filter()),
             });
             (self.scene.textures.len() - 1) as u32
         });
@@ -135,6 +136,24 @@ fn source_present(doc: &gltf::Document, i: usize) -> Result<(), ImageError> {
         (Some(_), _) if json.mime_type.is_none() => Err(ImageError::NoMimeType),
         (None, None) => Err(ImageError::NoSource),
         _ => Ok(()),
+    }
+}
+
+/// A sampler's filters as one (glint has no mip levels, so their part of a min filter is
+/// dropped): nearest where every filter the sampler names is nearest, as Blender's importer
+/// decides; linear where it names none, the usual choice the spec leaves to the renderer.
+fn filter(min: Option<gltf::texture::MinFilter>, mag: Option<gltf::texture::MagFilter>) -> Filter {
+    use gltf::texture::{MagFilter, MinFilter};
+    let min_nearest = min.map(|m| {
+        matches!(
+            m,
+            MinFilter::Nearest | MinFilter::NearestMipmapNearest | MinFilter::NearestMipmapLinear
+        )
+    });
+    let mag_nearest = mag.map(|m| m == MagFilter::Nearest);
+    match (min_nearest, mag_nearest) {
+        (Some(true), Some(true)) | (Some(true), None) | (None, Some(true)) => Filter::Nearest,
+        _ => Filter::Linear,
     }
 }
 

@@ -7,7 +7,8 @@ use glam::{Vec2, Vec3};
 
 use super::uv_transform;
 use crate::scene::{
-    AlphaMode, DirectionalLight, Light, PointLight, Projection, Scene, SpotLight, TexRef, Wrap,
+    AlphaMode, DirectionalLight, Filter, Light, PointLight, Projection, Scene, SpotLight, TexRef,
+    Wrap,
 };
 
 fn base64(bytes: &[u8]) -> String {
@@ -369,6 +370,60 @@ fn cameras_in_document_order_without_scale() {
 }
 
 #[test]
+fn sampler_filters_become_nearest_only_where_every_named_filter_is_nearest() {
+    let dir = tempfile::tempdir().unwrap();
+    let img = image::RgbaImage::from_raw(2, 1, vec![255, 0, 0, 255, 0, 0, 255, 128]).unwrap();
+    img.save(dir.path().join("tex.png")).unwrap();
+    // (magFilter, minFilter) of each sampler, and the filter glint should take.
+    let cases = [
+        (Some(9728), None, Filter::Nearest),
+        (None, Some(9728), Filter::Nearest),
+        (Some(9728), Some(9986), Filter::Nearest),
+        (Some(9728), Some(9987), Filter::Linear),
+        (Some(9729), Some(9984), Filter::Linear),
+        (None, None, Filter::Linear),
+    ];
+    let field =
+        |name: &str, v: Option<u32>| v.map_or(String::new(), |v| format!(r#""{name}": {v}"#));
+    let samplers: Vec<String> = cases
+        .iter()
+        .map(|(mag, min, _)| {
+            let fields: Vec<String> = [field("magFilter", *mag), field("minFilter", *min)]
+                .into_iter()
+                .filter(|f| !f.is_empty())
+                .collect();
+            format!("{{{}}}", fields.join(", "))
+        })
+        .collect();
+    let textures: Vec<String> = (0..cases.len())
+        .map(|k| format!(r#"{{"source": 0, "sampler": {k}}}"#))
+        .collect();
+    let materials: Vec<String> = (0..cases.len())
+        .map(|k| format!(r#"{{"pbrMetallicRoughness": {{"baseColorTexture": {{"index": {k}}}}}}}"#))
+        .collect();
+    let p = write(
+        &dir,
+        &TRI,
+        &[0, 1, 2],
+        &format!(
+            r#""images": [{{"uri": "tex.png"}}], "samplers": [{}], "textures": [{}],
+               "materials": [{}], "nodes": [{{"mesh": 0}}], "scenes": [{{"nodes": [0]}}]"#,
+            samplers.join(", "),
+            textures.join(", "),
+            materials.join(", ")
+        ),
+    );
+    let s = Scene::load(&p).unwrap();
+    for (k, (mag, min, want)) in cases.iter().enumerate() {
+        let t = s.materials[k].base_color_tex.unwrap().texture;
+        assert_eq!(
+            s.textures[t as usize].filter, *want,
+            "mag {mag:?}, min {min:?}"
+        );
+    }
+}
+
+#[test]
 fn materials_textures_and_transform() {
     let dir = tempfile::tempdir().unwrap();
     // A 2x1 PNG written next to the file.
@@ -421,6 +476,7 @@ fn materials_textures_and_transform() {
     assert_eq!(t.pixels[1], [0, 0, 255, 128]);
     assert_eq!(t.wrap_s, Wrap::ClampToEdge);
     assert_eq!(t.wrap_t, Wrap::MirroredRepeat);
+    assert_eq!(t.filter, Filter::Linear, "a sampler naming no filter");
     assert_eq!(bc.apply(Vec2::new(1.0, 1.0)), Vec2::new(2.5, 3.25));
     let mr = m.metallic_roughness_tex.unwrap();
     assert!(!s.textures[mr.texture as usize].srgb);
