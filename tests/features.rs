@@ -13,7 +13,8 @@ use glint::accel::Backend;
 use glint::render::RenderSettings;
 use glint::scene::features::Features;
 use glint::scene::{
-    AlphaMode, Camera, Instance, Light, Material, Mesh, PointLight, Scene, TexRef, Texture, Wrap,
+    AlphaMode, Camera, Instance, Light, Material, Mesh, PointLight, Scene, TexRef, Texture,
+    TextureFilter, Wrap,
 };
 
 /// A horizontal square of half-size `s` at height `y`, facing up.
@@ -43,6 +44,7 @@ fn texel(rgba: [u8; 4]) -> Texture {
         srgb: false,
         wrap_s: Wrap::Repeat,
         wrap_t: Wrap::Repeat,
+        filter: TextureFilter::Linear,
     }
 }
 

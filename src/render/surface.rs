@@ -379,7 +379,7 @@ mod tests {
     use std::f32::consts::{FRAC_1_SQRT_2, FRAC_PI_2, FRAC_PI_4};
 
     use super::*;
-    use crate::scene::texture::{Filter, Texture, Wrap};
+    use crate::scene::texture::{Texture, TextureFilter, Wrap};
 
     /// KHR_materials_anisotropy's convention: the direction lies in tangent space, turned
     /// counter-clockwise by anisotropyRotation from the tangent towards the bitangent; the
@@ -397,7 +397,7 @@ mod tests {
             srgb: false,
             wrap_s: Wrap::Repeat,
             wrap_t: Wrap::Repeat,
-            filter: Filter::Linear,
+            filter: TextureFilter::Linear,
         });
         let uv = VertexAttrs::from_uv(Vec2::splat(0.5));
         let (t, b) = (Vec3::X, Vec3::Y);
@@ -455,7 +455,7 @@ mod tests {
                 srgb,
                 wrap_s: Wrap::Repeat,
                 wrap_t: Wrap::Repeat,
-                filter: Filter::Linear,
+                filter: TextureFilter::Linear,
             });
         }
         let uv = VertexAttrs::from_uv(Vec2::splat(0.5));

@@ -38,7 +38,7 @@ pub use layers::MaterialLayers;
 pub use load_options::{LoadOptions, SceneChoice};
 pub use mesh::{Mesh, VertexAttrs};
 pub use shading::{GgxScattering, Layering, ShadingModel};
-pub use texture::{Filter, Texture, Wrap};
+pub use texture::{Texture, TextureFilter, Wrap};
 pub use up_axis::UpAxis;
 pub use variants::MaterialVariants;
 

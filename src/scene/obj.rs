@@ -23,7 +23,9 @@ use std::path::{Path, PathBuf};
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
 use super::decode::Rgba8;
-use super::{AlphaMode, Filter, Instance, LoadError, Material, Mesh, Scene, TexRef, Texture, Wrap};
+use super::{
+    AlphaMode, Instance, LoadError, Material, Mesh, Scene, TexRef, Texture, TextureFilter, Wrap,
+};
 
 /// Reads a file an OBJ names (an MTL library, a texture), given its full path.
 pub type Files<'a> = dyn Fn(&Path) -> std::io::Result<Vec<u8>> + 'a;
@@ -425,7 +427,7 @@ fn metal_rough_texture(
         srgb: false,
         wrap_s: Wrap::Repeat,
         wrap_t: Wrap::Repeat,
-        filter: Filter::Linear,
+        filter: TextureFilter::Linear,
     });
     Some((scene.textures.len() - 1) as u32)
 }
@@ -502,7 +504,7 @@ fn texture(
             srgb,
             wrap_s: Wrap::Repeat,
             wrap_t: Wrap::Repeat,
-            filter: Filter::Linear,
+            filter: TextureFilter::Linear,
         });
         (scene.textures.len() - 1) as u32
     });

@@ -36,7 +36,7 @@ impl Wrap {
 /// How a lookup between texel centres is filtered. There are no mip levels (pixel-area sampling
 /// averages minified texels), so one filter serves magnification and minification.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum Filter {
+pub enum TextureFilter {
     #[default]
     Linear,
     /// The texel holding the point: pixel art, lookup tables and ID maps stay crisp.
@@ -54,7 +54,7 @@ pub struct Texture {
     pub srgb: bool,
     pub wrap_s: Wrap,
     pub wrap_t: Wrap,
-    pub filter: Filter,
+    pub filter: TextureFilter,
 }
 
 fn srgb_table() -> &'static [f32; 256] {
@@ -86,7 +86,7 @@ impl Texture {
         if self.width == 0 || self.height == 0 || !uv.is_finite() {
             return Vec4::ONE;
         }
-        if self.filter == Filter::Nearest {
+        if self.filter == TextureFilter::Nearest {
             // Floats beyond i64 saturate in the cast, and every wrap maps those into range.
             let x = (uv.x * self.width as f32).floor() as i64;
             let y = (uv.y * self.height as f32).floor() as i64;
@@ -127,14 +127,14 @@ mod tests {
             srgb: false,
             wrap_s: wrap,
             wrap_t: wrap,
-            filter: Filter::Linear,
+            filter: TextureFilter::Linear,
         }
     }
 
     #[test]
     fn nearest_takes_the_texel_holding_the_point() {
         let t = Texture {
-            filter: Filter::Nearest,
+            filter: TextureFilter::Nearest,
             ..checker(Wrap::Repeat)
         };
         // Linear would give 0.5 at the border between the two texels and 0.25 a quarter before.

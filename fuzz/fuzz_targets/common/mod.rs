@@ -10,7 +10,7 @@ use glam::Vec3;
 use glint::accel::Backend;
 use glint::render::job::{Basics, JobOptions, Overrides, RenderJob};
 use glint::scene::gltf::meshopt::{decode, Filter, Mode};
-use glint::scene::{EnvMap, Light, TexRef, Texture, Wrap};
+use glint::scene::{EnvMap, Light, TexRef, Texture, TextureFilter, Wrap};
 use glint::Scene;
 
 /// Scenes up to this many triangles (and CSG objects) are built and rendered; bigger ones only
@@ -136,6 +136,12 @@ pub fn texture(data: &[u8]) {
         srgb: true,
         wrap_s: Wrap::Repeat,
         wrap_t: Wrap::MirroredRepeat,
+        // Both filters, by the input's length (its bytes are the image's).
+        filter: if data.len().is_multiple_of(2) {
+            TextureFilter::Nearest
+        } else {
+            TextureFilter::Linear
+        },
     });
     scene.materials[0].base_color_tex = Some(TexRef::new(0));
     exercise(scene);

@@ -6,7 +6,7 @@ use std::rc::Rc;
 use super::accessor::{uri_decodes, view_bytes};
 use super::error::ImageError;
 use super::Loader;
-use crate::scene::{Filter, Texture, Wrap};
+use crate::scene::{Texture, TextureFilter, Wrap};
 
 /// Decoded image pixels, shared by the sRGB and linear variants of a texture.
 pub(super) type Pixels = crate::scene::decode::Rgba8;
@@ -142,7 +142,10 @@ fn source_present(doc: &gltf::Document, i: usize) -> Result<(), ImageError> {
 /// A sampler's filters as one (glint has no mip levels, so their part of a min filter is
 /// dropped): nearest where every filter the sampler names is nearest, as Blender's importer
 /// decides; linear where it names none, the usual choice the spec leaves to the renderer.
-fn filter(min: Option<gltf::texture::MinFilter>, mag: Option<gltf::texture::MagFilter>) -> Filter {
+fn filter(
+    min: Option<gltf::texture::MinFilter>,
+    mag: Option<gltf::texture::MagFilter>,
+) -> TextureFilter {
     use gltf::texture::{MagFilter, MinFilter};
     let min_nearest = min.map(|m| {
         matches!(
@@ -152,8 +155,10 @@ fn filter(min: Option<gltf::texture::MinFilter>, mag: Option<gltf::texture::MagF
     });
     let mag_nearest = mag.map(|m| m == MagFilter::Nearest);
     match (min_nearest, mag_nearest) {
-        (Some(true), Some(true)) | (Some(true), None) | (None, Some(true)) => Filter::Nearest,
-        _ => Filter::Linear,
+        (Some(true), Some(true)) | (Some(true), None) | (None, Some(true)) => {
+            TextureFilter::Nearest
+        }
+        _ => TextureFilter::Linear,
     }
 }
 

@@ -7,8 +7,8 @@ use glam::{Vec2, Vec3};
 
 use super::uv_transform;
 use crate::scene::{
-    AlphaMode, DirectionalLight, Filter, Light, PointLight, Projection, Scene, SpotLight, TexRef,
-    Wrap,
+    AlphaMode, DirectionalLight, Light, PointLight, Projection, Scene, SpotLight, TexRef,
+    TextureFilter, Wrap,
 };
 
 fn base64(bytes: &[u8]) -> String {
@@ -376,12 +376,12 @@ fn sampler_filters_become_nearest_only_where_every_named_filter_is_nearest() {
     img.save(dir.path().join("tex.png")).unwrap();
     // (magFilter, minFilter) of each sampler, and the filter glint should take.
     let cases = [
-        (Some(9728), None, Filter::Nearest),
-        (None, Some(9728), Filter::Nearest),
-        (Some(9728), Some(9986), Filter::Nearest),
-        (Some(9728), Some(9987), Filter::Linear),
-        (Some(9729), Some(9984), Filter::Linear),
-        (None, None, Filter::Linear),
+        (Some(9728), None, TextureFilter::Nearest),
+        (None, Some(9728), TextureFilter::Nearest),
+        (Some(9728), Some(9986), TextureFilter::Nearest),
+        (Some(9728), Some(9987), TextureFilter::Linear),
+        (Some(9729), Some(9984), TextureFilter::Linear),
+        (None, None, TextureFilter::Linear),
     ];
     let field =
         |name: &str, v: Option<u32>| v.map_or(String::new(), |v| format!(r#""{name}": {v}"#));
@@ -476,7 +476,11 @@ fn materials_textures_and_transform() {
     assert_eq!(t.pixels[1], [0, 0, 255, 128]);
     assert_eq!(t.wrap_s, Wrap::ClampToEdge);
     assert_eq!(t.wrap_t, Wrap::MirroredRepeat);
-    assert_eq!(t.filter, Filter::Linear, "a sampler naming no filter");
+    assert_eq!(
+        t.filter,
+        TextureFilter::Linear,
+        "a sampler naming no filter"
+    );
     assert_eq!(bc.apply(Vec2::new(1.0, 1.0)), Vec2::new(2.5, 3.25));
     let mr = m.metallic_roughness_tex.unwrap();
     assert!(!s.textures[mr.texture as usize].srgb);
