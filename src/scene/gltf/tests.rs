@@ -369,11 +369,17 @@ fn cameras_in_document_order_without_scale() {
     );
 }
 
-#[test]
-fn sampler_filters_become_nearest_only_where_every_named_filter_is_nearest() {
+/// A temp dir holding `tex.png`, a 2x1 image (opaque red, then half-transparent blue).
+fn dir_with_tex_png() -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
     let img = image::RgbaImage::from_raw(2, 1, vec![255, 0, 0, 255, 0, 0, 255, 128]).unwrap();
     img.save(dir.path().join("tex.png")).unwrap();
+    dir
+}
+
+#[test]
+fn sampler_filters_become_nearest_only_where_every_named_filter_is_nearest() {
+    let dir = dir_with_tex_png();
     // (magFilter, minFilter) of each sampler, and the filter glint should take.
     let cases = [
         (Some(9728), None, TextureFilter::Nearest),
@@ -425,10 +431,7 @@ fn sampler_filters_become_nearest_only_where_every_named_filter_is_nearest() {
 
 #[test]
 fn materials_textures_and_transform() {
-    let dir = tempfile::tempdir().unwrap();
-    // A 2x1 PNG written next to the file.
-    let img = image::RgbaImage::from_raw(2, 1, vec![255, 0, 0, 255, 0, 0, 255, 128]).unwrap();
-    img.save(dir.path().join("tex.png")).unwrap();
+    let dir = dir_with_tex_png();
     let p = write(
         &dir,
         &TRI,
