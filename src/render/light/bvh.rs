@@ -521,6 +521,36 @@ mod tests {
         }
     }
 
+    /// Lights that no split can tell apart (one box, one power) are halved by the middle split
+    /// down to leaves of one, several wide levels deep, and each is as likely as the others.
+    #[test]
+    fn coincident_lights_are_chosen_alike_through_middle_splits() {
+        let n = 1000;
+        let (mut weights, bounds) = lights(1, false);
+        let one = bounds[0].unwrap();
+        weights.truncate(1);
+        let bvh = LightBvh::new(&vec![weights[0]; n], |_| Some(one));
+        let p = one.centroid() + one.normals.w * 0.5;
+        let total: f32 = (0..n).map(|i| bvh.pmf(p, Vec3::ZERO, i)).sum();
+        assert!((total - 1.0).abs() < 1e-4, "{total}");
+        let mut counts = vec![0u32; n];
+        let m = 100 * n;
+        for j in 0..m {
+            let (i, pi) = bvh
+                .choose(p, Vec3::ZERO, (j as f32 + 0.5) / m as f32)
+                .unwrap();
+            assert!((pi * n as f32 - 1.0).abs() < 1e-3, "light {i}: {pi}");
+            counts[i] += 1;
+        }
+        // Stratified u over equal shares: each light takes its 100 strata, give or take the
+        // rounding at each of the levels.
+        assert!(
+            counts.iter().all(|&c| (96..=104).contains(&c)),
+            "{:?}",
+            &counts[..20]
+        );
+    }
+
     #[test]
     fn far_from_all_lights_the_choice_is_by_power() {
         let (weights, bounds) = lights(50, false);
