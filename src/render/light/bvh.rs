@@ -16,11 +16,6 @@ use super::bounds::{Bounds4, LightBounds, PackedBounds};
 use crate::geometry::Aabb;
 use crate::sample::ONE_MINUS_EPS;
 
-/// Most lights in a leaf, chosen among by power. One: every choice is made by importance. With
-/// leaves of four (a blind choice among neighbours, a level fewer) many-emitters had 1.11x the
-/// variance per sample for 0.98x the time a sample, 1.11x the time to RMSE 0.01 (two: 1.07x;
-/// benches/peers/README.md, with four-wide nodes).
-const LEAF_LIGHTS: usize = 1;
 /// Buckets per axis of the split search.
 const BUCKETS: usize = 12;
 /// From this depth on, nodes split in the middle, so no trail outgrows its 64 bits: 21 wide levels
@@ -32,35 +27,27 @@ const BALANCED_FROM_DEPTH: u32 = 31;
 const LANES: usize = 8;
 const LANE_BITS: u32 = 3;
 
+/// A node of the binary tree. Every leaf is one light, so every choice is made by importance:
+/// with leaves of up to four chosen among by power (a blind choice among neighbours, a level
+/// fewer), many-emitters had 1.11x the variance per sample for 0.98x the time a sample, 1.11x the
+/// time to RMSE 0.01 (two: 1.07x; benches/peers/README.md, with four-wide nodes).
 #[derive(Clone, Debug)]
 struct Node {
     bounds: PackedBounds,
-    /// A leaf's first light in `LightBvh::leaf_lights`, or an interior node's second child (its
-    /// first follows it).
+    /// A leaf's light (its entry), or an interior node's second child (its first follows it).
     index: u32,
-    /// A leaf's number of lights; 0 for interior nodes.
-    lights: u32,
-}
-
-/// A light of a leaf: its entry, and its share of the leaf's power with the running sum of the
-/// shares up to it (the choice within the leaf).
-#[derive(Clone, Copy, Debug)]
-struct LeafLight {
-    entry: u32,
-    share: f32,
-    cdf: f32,
+    leaf: bool,
 }
 
 /// A node of the eight-wide tree that the choice descends: up to eight children side by side.
 #[derive(Clone, Copy)]
 struct WideNode {
     bounds: [Bounds4; LANES / 4],
-    /// Per lane: an interior child's index in `LightBvh::wide`, or a leaf's first light in
-    /// `LightBvh::leaf_lights`.
+    /// Per lane: an interior child's index in `LightBvh::wide`, or a leaf's light.
     index: [u32; LANES],
-    /// Per lane: a leaf's number of lights; 0 for an interior child (and an empty lane, whose
-    /// importance is zero, so it is never taken).
-    lights: [u32; LANES],
+    /// Per lane: whether it is a leaf (not for an empty lane, whose importance is zero, so it is
+    /// never taken).
+    leaf: [bool; LANES],
 }
 
 impl WideNode {
@@ -77,10 +64,10 @@ impl WideNode {
 }
 
 /// Where a light sits: its trail from the root (bits 3k to 3k + 2: the lane taken at wide depth
-/// k) and its share of its leaf.
+/// k).
 #[derive(Clone, Copy, Debug)]
 enum Place {
-    Tree(u64, f32),
+    Tree(u64),
     /// Chosen by power among the lights at infinity, at this index of their table.
     Infinite(u32),
     /// Never chosen (no power, or no bounds and not at infinity).
@@ -90,7 +77,6 @@ enum Place {
 #[derive(Clone)]
 pub(super) struct LightBvh {
     wide: Vec<WideNode>,
-    leaf_lights: Vec<LeafLight>,
     places: Vec<Place>,
     infinite: Vec<u32>,
     infinite_table: AliasTable,
@@ -130,22 +116,16 @@ impl LightBvh {
         } else {
             0.0
         };
-        let mut tree = Tree {
-            nodes: Vec::with_capacity(2 * items.len()),
-            leaf_lights: Vec::with_capacity(items.len()),
-            places: &mut places,
-        };
+        let mut nodes = Vec::with_capacity(2 * items.len());
         if !items.is_empty() {
-            tree.build(&mut items, 0, 0);
+            build(&mut nodes, &mut items, 0);
         }
-        let (nodes, leaf_lights) = (tree.nodes, tree.leaf_lights);
         let mut wide = Vec::with_capacity(nodes.len() / 2 + 1);
         if !nodes.is_empty() {
-            collapse(&nodes, 0, (0, 0), &mut wide, &leaf_lights, &mut places);
+            collapse(&nodes, 0, (0, 0), &mut wide, &mut places);
         }
         Self {
             wide,
-            leaf_lights,
             places,
             infinite,
             infinite_table: AliasTable::new(&infinite_weights),
@@ -181,14 +161,8 @@ impl LightBvh {
             let share = shares[lane];
             u = ((u - below) / share).min(ONE_MINUS_EPS);
             pmf *= share;
-            if node.lights[lane] > 0 {
-                let leaf =
-                    &self.leaf_lights[node.index[lane] as usize..][..node.lights[lane] as usize];
-                let l = leaf
-                    .iter()
-                    .find(|l| u < l.cdf)
-                    .unwrap_or(&leaf[leaf.len() - 1]);
-                return Some((l.entry as usize, pmf * l.share));
+            if node.leaf[lane] {
+                return Some((node.index[lane] as usize, pmf));
             }
             at = node.index[lane] as usize;
         }
@@ -196,8 +170,8 @@ impl LightBvh {
 
     /// The probability that `choose` picks light `i` for `p` and `n`.
     pub fn pmf(&self, p: Vec3, n: Vec3, i: usize) -> f32 {
-        let (mut trail, share) = match self.places[i] {
-            Place::Tree(t, share) => (t, share),
+        let mut trail = match self.places[i] {
+            Place::Tree(t) => t,
             Place::Infinite(k) => return self.p_infinite * self.infinite_table.pmf(k as usize),
             Place::Nowhere => return 0.0,
         };
@@ -210,8 +184,8 @@ impl LightBvh {
             };
             let lane = (trail & (LANES as u64 - 1)) as usize;
             pmf *= shares[lane];
-            if node.lights[lane] > 0 {
-                return pmf * share;
+            if node.leaf[lane] {
+                return pmf;
             }
             at = node.index[lane] as usize;
             trail >>= LANE_BITS;
@@ -230,25 +204,23 @@ fn shares(importance: [f32; LANES]) -> Option<[f32; LANES]> {
 }
 
 /// Makes the wide node for binary node `at` (interior, or the root leaf): its lanes are `at`'s
-/// descendants three levels down, or nearer ones where those are leaves. Each lane at wide `depth` is numbered into
-/// the trails of the lights below it; returns the node's index in `wide`.
+/// descendants three levels down, or nearer ones where those are leaves. Each lane at wide
+/// `depth` is numbered into the trails of the lights below it; returns the node's index in `wide`.
 fn collapse(
     binary: &[Node],
     at: usize,
     (depth, trail): (u32, u64),
     wide: &mut Vec<WideNode>,
-    leaf_lights: &[LeafLight],
     places: &mut [Place],
 ) -> u32 {
-    let node = &binary[at];
     let mut lanes = vec![at];
-    if node.lights == 0 {
+    if !binary[at].leaf {
         for _ in 0..LANE_BITS {
             lanes = lanes
                 .into_iter()
                 .flat_map(|c| {
                     let child = &binary[c];
-                    if child.lights > 0 {
+                    if child.leaf {
                         vec![c]
                     } else {
                         vec![c + 1, child.index as usize]
@@ -263,88 +235,47 @@ fn collapse(
     wide.push(WideNode {
         bounds: std::array::from_fn(|_| Bounds4::new(quads.next().unwrap_or(&[]))),
         index: [0; LANES],
-        lights: [0; LANES],
+        leaf: [false; LANES],
     });
     for (l, &b) in lanes.iter().enumerate() {
         let lane_trail = trail | (l as u64) << (LANE_BITS * depth);
         let child = &binary[b];
-        if child.lights > 0 {
-            let first = child.index as usize;
-            for ll in &leaf_lights[first..first + child.lights as usize] {
-                places[ll.entry as usize] = Place::Tree(lane_trail, ll.share);
-            }
+        if child.leaf {
+            places[child.index as usize] = Place::Tree(lane_trail);
             wide[me].index[l] = child.index;
-            wide[me].lights[l] = child.lights;
+            wide[me].leaf[l] = true;
         } else {
-            let k = collapse(
-                binary,
-                b,
-                (depth + 1, lane_trail),
-                wide,
-                leaf_lights,
-                places,
-            );
-            wide[me].index[l] = k;
+            wide[me].index[l] = collapse(binary, b, (depth + 1, lane_trail), wide, places);
         }
     }
     me as u32
 }
 
-/// The tree while it is built.
-struct Tree<'a> {
-    nodes: Vec<Node>,
-    leaf_lights: Vec<LeafLight>,
-    places: &'a mut [Place],
-}
-
-impl Tree<'_> {
-    /// Builds the subtree of `items` at `depth` with bit trail `trail`, appending its nodes (the
-    /// node first, then its left subtree, then its right) and recording each light's place.
-    fn build(&mut self, items: &mut [(u32, LightBounds)], depth: u32, trail: u64) -> LightBounds {
-        if items.len() <= LEAF_LIGHTS {
-            return self.leaf(items, trail);
-        }
-        let mid = split(items, depth).unwrap_or_else(|| middle_split(items));
-        let at = self.nodes.len();
-        self.nodes.push(Node {
-            bounds: items[0].1.packed(),
-            index: 0,
-            lights: 0,
-        });
-        let (left, right) = items.split_at_mut(mid);
-        let lb = self.build(left, depth + 1, trail);
-        self.nodes[at].index = self.nodes.len() as u32;
-        let rb = self.build(right, depth + 1, trail | (1 << depth));
-        let b = LightBounds::union(&lb, &rb);
-        self.nodes[at].bounds = b.packed();
-        b
-    }
-
-    fn leaf(&mut self, items: &[(u32, LightBounds)], trail: u64) -> LightBounds {
-        let b = items
-            .iter()
-            .map(|(_, b)| *b)
-            .reduce(|a, b| LightBounds::union(&a, &b))
-            .expect("a leaf has lights");
-        self.nodes.push(Node {
+/// Builds the binary subtree of `items` at `depth` into `nodes` (the node first, then its left
+/// subtree, then its right); `collapse` then numbers each light's trail.
+fn build(nodes: &mut Vec<Node>, items: &mut [(u32, LightBounds)], depth: u32) -> LightBounds {
+    if let [(entry, b)] = items {
+        nodes.push(Node {
             bounds: b.packed(),
-            index: self.leaf_lights.len() as u32,
-            lights: items.len() as u32,
+            index: *entry,
+            leaf: true,
         });
-        let total: f64 = items.iter().map(|(_, l)| l.phi as f64).sum();
-        let mut cdf = 0.0f64;
-        for &(entry, l) in items {
-            let share = (l.phi as f64 / total) as f32;
-            cdf += l.phi as f64 / total;
-            self.places[entry as usize] = Place::Tree(trail, share);
-            self.leaf_lights.push(LeafLight {
-                entry,
-                share,
-                cdf: cdf as f32,
-            });
-        }
-        b
+        return *b;
     }
+    let mid = split(items, depth).unwrap_or_else(|| middle_split(items));
+    let at = nodes.len();
+    nodes.push(Node {
+        bounds: items[0].1.packed(),
+        index: 0,
+        leaf: false,
+    });
+    let (left, right) = items.split_at_mut(mid);
+    let lb = build(nodes, left, depth + 1);
+    nodes[at].index = nodes.len() as u32;
+    let rb = build(nodes, right, depth + 1);
+    let b = LightBounds::union(&lb, &rb);
+    nodes[at].bounds = b.packed();
+    b
 }
 
 /// The split of `items` (sorted in place into two groups) of least surface-area-orientation
@@ -526,9 +457,8 @@ mod tests {
     #[test]
     fn coincident_lights_are_chosen_alike_through_middle_splits() {
         let n = 1000;
-        let (mut weights, bounds) = lights(1, false);
+        let (weights, bounds) = lights(1, false);
         let one = bounds[0].unwrap();
-        weights.truncate(1);
         let bvh = LightBvh::new(&vec![weights[0]; n], |_| Some(one));
         let p = one.centroid() + one.normals.w * 0.5;
         let total: f32 = (0..n).map(|i| bvh.pmf(p, Vec3::ZERO, i)).sum();

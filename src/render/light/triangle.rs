@@ -25,8 +25,8 @@ pub(super) struct Triangle {
     /// World-space vertices.
     v: [Vec3; 3],
     area: f32,
-    /// Unit normal (either side), and the bounding sphere about the centroid: what the cheap
-    /// bounds on the solid angle need.
+    /// Unit normal (either side; zero for a degenerate triangle), and the bounding sphere about
+    /// the centroid: what area sampling and the cheap bounds on the solid angle need.
     n: Vec3,
     centre: Vec3,
     r2: f32,
@@ -96,19 +96,24 @@ impl Triangle {
                 is_delta: false,
             });
         }
-        let mut n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
         // Emissive triangles are two-sided.
-        if n.dot(q - p) > 0.0 {
-            n = -n;
-        }
+        let n = if self.n.dot(q - p) > 0.0 {
+            -self.n
+        } else {
+            self.n
+        };
         area_sample(p, q, n, self.area, li, choice)
     }
 
     /// The bounds of the triangle's emission, of power `phi`, for the light BVH.
     pub fn bounds(&self, phi: f32) -> LightBounds {
-        let v = &self.v;
-        let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or(Vec3::Z);
-        LightBounds::planar(v, n, phi, true)
+        // A degenerate triangle (no normal) gets any: its power is zero.
+        let n = if self.n == Vec3::ZERO {
+            Vec3::Z
+        } else {
+            self.n
+        };
+        LightBounds::planar(&self.v, n, phi, true)
     }
 
     /// The solid-angle pdf, times `choice`, with which `sample` picks point `q` (normal `nq`) for
