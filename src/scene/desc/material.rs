@@ -4,6 +4,9 @@
 use glam::Vec3;
 use serde::Deserialize;
 
+use super::layers::{
+    AnisotropyDesc, ClearcoatDesc, DiffuseTransmissionDesc, IridescenceDesc, SheenDesc,
+};
 use super::light::white;
 use crate::scene::{AlphaMode, Material};
 
@@ -40,6 +43,20 @@ pub(super) struct MaterialDesc {
     attenuation_distance: Option<f32>,
     #[serde(default)]
     double_sided: bool,
+    /// KHR_materials_unlit: the base colour shown as it is.
+    #[serde(default)]
+    unlit: bool,
+    // The extension layers (`layers.rs`).
+    /// KHR_materials_specular's specularColorFactor: tints the dielectric F0.
+    pub(super) specular_color: Option<[f32; 3]>,
+    pub(super) clearcoat: Option<ClearcoatDesc>,
+    pub(super) sheen: Option<SheenDesc>,
+    pub(super) anisotropy: Option<AnisotropyDesc>,
+    pub(super) iridescence: Option<IridescenceDesc>,
+    pub(super) diffuse_transmission: Option<DiffuseTransmissionDesc>,
+    /// KHR_materials_dispersion: 20 / Abbe number (0: none); for solids (`thickness` above 0).
+    #[serde(default)]
+    pub(super) dispersion: f32,
 }
 
 fn grey() -> [f32; 3] {
@@ -76,6 +93,8 @@ impl MaterialDesc {
             thickness: self.thickness,
             attenuation_color: self.attenuation_color.into(),
             attenuation_distance: self.attenuation_distance.unwrap_or(f32::INFINITY),
+            unlit: self.unlit,
+            layers: self.to_layers(),
             ..Material::default()
         }
     }
@@ -116,6 +135,6 @@ impl MaterialDesc {
         if !(e.is_finite() && e.min_element() >= 0.0) {
             return Some(("emissive", "must be finite and not negative"));
         }
-        None
+        self.layers_range_error()
     }
 }

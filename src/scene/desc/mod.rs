@@ -10,6 +10,7 @@ use serde::Deserialize;
 use toml::Spanned;
 
 pub mod csg;
+mod layers;
 mod light;
 mod material;
 mod settings;

@@ -3,6 +3,7 @@
 
 use super::*;
 use crate::sample::SamplerKind;
+use crate::scene::MaterialLayers;
 
 fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
     let p = dir.join(name);
@@ -233,4 +234,116 @@ shutter = [0, 0.5]
     );
     let e = load(&bad).unwrap_err().to_string();
     assert!(e.contains("line 1") && e.contains("nothing"), "{e}");
+}
+
+/// The materials a scene file defines (with no assets), by name.
+fn file_materials(text: &str) -> Result<Vec<Material>, String> {
+    let s = load_str(Path::new("m.toml"), text).map_err(|e| e.to_string())?;
+    Ok(s.materials)
+}
+
+#[test]
+fn material_layers_take_their_gltf_meanings() {
+    let m = file_materials(
+        r#"
+[[material]]
+name = "all"
+specular_color = [0.9, 0.8, 0.7]
+dispersion = 0.25
+thickness = 1
+clearcoat = { factor = 0.6, roughness = 0.2 }
+sheen = { color = [0.5, 0.4, 0.3], roughness = 0.7 }
+anisotropy = { strength = 0.8, rotation = 90 }
+iridescence = { factor = 0.9, ior = 1.4, thickness = 550 }
+diffuse_transmission = { factor = 0.3, color = [1, 0.5, 0.25] }
+
+[[material]]
+name = "bare"
+unlit = true
+[material.clearcoat]
+[material.sheen]
+[material.iridescence]
+[material.diffuse_transmission]
+
+[[material]]
+name = "off"
+clearcoat = { factor = 0 }
+sheen = { color = [0, 0, 0] }
+anisotropy = { strength = 0 }
+"#,
+    )
+    .unwrap();
+    let by = |n: &str| m.iter().find(|m| m.name == n).unwrap().clone();
+    let all = by("all");
+    let l = &all.layers;
+    assert_eq!(l.specular_color, Vec3::new(0.9, 0.8, 0.7));
+    assert_eq!(l.dispersion, 0.25);
+    let c = l.clearcoat.unwrap();
+    assert_eq!((c.factor, c.roughness, c.normal_scale), (0.6, 0.2, 1.0));
+    let s = l.sheen.unwrap();
+    assert_eq!((s.color, s.roughness), (Vec3::new(0.5, 0.4, 0.3), 0.7));
+    let a = l.anisotropy.unwrap();
+    assert_eq!(a.strength, 0.8);
+    assert!((a.rotation - std::f32::consts::FRAC_PI_2).abs() < 1e-6);
+    let i = l.iridescence.unwrap();
+    assert_eq!((i.factor, i.ior, i.thickness_max), (0.9, 1.4, 550.0));
+    let d = l.diffuse_transmission.unwrap();
+    assert_eq!((d.factor, d.color), (0.3, Vec3::new(1.0, 0.5, 0.25)));
+    assert!(!all.unlit);
+
+    // A bare table is a visible layer: a full smooth coat, a white sheen, the extensions' film.
+    let bare = by("bare");
+    assert!(bare.unlit);
+    let l = &bare.layers;
+    let c = l.clearcoat.unwrap();
+    assert_eq!((c.factor, c.roughness), (1.0, 0.0));
+    assert_eq!(l.sheen.unwrap().color, Vec3::ONE);
+    let i = l.iridescence.unwrap();
+    assert_eq!(
+        (i.factor, i.ior, i.thickness_min, i.thickness_max),
+        (1.0, 1.3, 400.0, 400.0)
+    );
+    assert_eq!(l.diffuse_transmission.unwrap().factor, 1.0);
+    assert_eq!(l.specular_color, Vec3::ONE);
+
+    // At strength 0 a layer is off, as a glTF extension's is.
+    assert_eq!(by("off").layers, MaterialLayers::default());
+}
+
+#[test]
+fn material_layers_out_of_range_are_named() {
+    for (table, field) in [
+        ("clearcoat = { factor = 1.5 }", "clearcoat.factor"),
+        ("clearcoat = { roughness = -0.1 }", "clearcoat.roughness"),
+        ("sheen = { color = [2, 0, 0] }", "sheen.color"),
+        ("sheen = { roughness = 3 }", "sheen.roughness"),
+        ("anisotropy = { strength = 2 }", "anisotropy.strength"),
+        (
+            "anisotropy = { strength = 1, rotation = nan }",
+            "anisotropy.rotation",
+        ),
+        ("iridescence = { ior = 0.5 }", "iridescence.ior"),
+        ("iridescence = { thickness = -1 }", "iridescence.thickness"),
+        (
+            "diffuse_transmission = { color = [0, -1, 0] }",
+            "diffuse_transmission.color",
+        ),
+        (
+            "diffuse_transmission = { factor = 1.01 }",
+            "diffuse_transmission.factor",
+        ),
+        ("specular_color = [1, 1, 1.5]", "specular_color"),
+        ("dispersion = -1", "dispersion"),
+        ("dispersion = inf", "dispersion"),
+    ] {
+        let text = format!("[[material]]\nname = \"m\"\n{table}\n");
+        let e = file_materials(&text).unwrap_err();
+        assert!(
+            e.contains("m.toml") && e.contains("material 'm'") && e.contains(field),
+            "{table}: {e}"
+        );
+    }
+    let e =
+        file_materials("[[material]]\nname = \"m\"\nsheen = { colour = [1, 1, 1] }\n").unwrap_err();
+    assert!(e.contains("line 3") && e.contains("colour"), "{e}");
 }

@@ -1,0 +1,195 @@
+//! The glTF extension layers of a scene file's `[[material]]`: tables for clearcoat, sheen,
+//! anisotropy, iridescence and diffuse transmission, plus specular colour and dispersion.
+//!
+//! A table that is present turns its layer on; its defaults make the bare table a visible layer
+//! (a full smooth coat, a white sheen, ...). Values mean what the glTF extensions' factors mean,
+//! except that angles are in degrees, as everywhere in scene files. No textures: scene-file
+//! materials have none. A layer whose strength is 0 is off, as the glTF loader has it.
+
+use glam::Vec3;
+use serde::Deserialize;
+
+use super::light::white;
+use super::material::MaterialDesc;
+use crate::scene::layers::{
+    Anisotropy, Clearcoat, DiffuseTransmission, Iridescence, MaterialLayers, Sheen,
+};
+
+/// `clearcoat = { factor, roughness }`: a dielectric GGX coat (IOR 1.5).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct ClearcoatDesc {
+    #[serde(default = "super::material::one")]
+    factor: f32,
+    /// Perceptual, as glTF's clearcoatRoughnessFactor.
+    #[serde(default)]
+    roughness: f32,
+}
+
+/// `sheen = { color, roughness }`: the Charlie sheen.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct SheenDesc {
+    #[serde(default = "white")]
+    color: [f32; 3],
+    #[serde(default = "half")]
+    roughness: f32,
+}
+
+/// `anisotropy = { strength, rotation }`: rotation in degrees, counter-clockwise from the tangent.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct AnisotropyDesc {
+    strength: f32,
+    #[serde(default)]
+    rotation: f32,
+}
+
+/// `iridescence = { factor, ior, thickness }`: a thin film, `thickness` in nanometres.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct IridescenceDesc {
+    #[serde(default = "super::material::one")]
+    factor: f32,
+    #[serde(default = "film_ior")]
+    ior: f32,
+    #[serde(default = "film_thickness")]
+    thickness: f32,
+}
+
+/// `diffuse_transmission = { factor, color }`: a Lambertian BTDF taking part of the diffuse light.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct DiffuseTransmissionDesc {
+    #[serde(default = "super::material::one")]
+    factor: f32,
+    #[serde(default = "white")]
+    color: [f32; 3],
+}
+
+fn half() -> f32 {
+    0.5
+}
+/// KHR_materials_iridescence's defaults.
+fn film_ior() -> f32 {
+    1.3
+}
+fn film_thickness() -> f32 {
+    400.0
+}
+
+impl MaterialDesc {
+    pub(super) fn to_layers(&self) -> MaterialLayers {
+        let on = |strength: f32| strength > 0.0;
+        MaterialLayers {
+            specular_color: self.specular_color.map_or(Vec3::ONE, Vec3::from),
+            clearcoat: self
+                .clearcoat
+                .as_ref()
+                .filter(|c| on(c.factor))
+                .map(|c| Clearcoat {
+                    factor: c.factor,
+                    factor_tex: None,
+                    roughness: c.roughness,
+                    roughness_tex: None,
+                    normal_tex: None,
+                    normal_scale: 1.0,
+                }),
+            sheen: self
+                .sheen
+                .as_ref()
+                .filter(|s| Vec3::from(s.color) != Vec3::ZERO)
+                .map(|s| Sheen {
+                    color: s.color.into(),
+                    color_tex: None,
+                    roughness: s.roughness,
+                    roughness_tex: None,
+                }),
+            anisotropy: self
+                .anisotropy
+                .as_ref()
+                .filter(|a| on(a.strength))
+                .map(|a| Anisotropy {
+                    strength: a.strength,
+                    rotation: a.rotation.to_radians(),
+                    texture: None,
+                }),
+            iridescence: self
+                .iridescence
+                .as_ref()
+                .filter(|i| on(i.factor))
+                .map(|i| Iridescence {
+                    factor: i.factor,
+                    factor_tex: None,
+                    ior: i.ior,
+                    // Without a thickness texture the film is `thickness_max` thick.
+                    thickness_min: i.thickness,
+                    thickness_max: i.thickness,
+                    thickness_tex: None,
+                }),
+            diffuse_transmission: self
+                .diffuse_transmission
+                .as_ref()
+                .filter(|d| on(d.factor))
+                .map(|d| DiffuseTransmission {
+                    factor: d.factor,
+                    factor_tex: None,
+                    color: d.color.into(),
+                    color_tex: None,
+                }),
+            dispersion: self.dispersion,
+            ..MaterialLayers::default()
+        }
+    }
+
+    /// The first field out of its physical range, as `(field, why)`.
+    pub(super) fn layers_range_error(&self) -> Option<(&'static str, &'static str)> {
+        const UNIT: &str = "must lie in [0, 1]";
+        let unit = |v: f32| (0.0..=1.0).contains(&v);
+        let colour = |c: &[f32; 3]| c.iter().all(|&v| unit(v));
+        let mut unit_fields = vec![];
+        if let Some(c) = &self.clearcoat {
+            unit_fields.extend([
+                ("clearcoat.factor", c.factor),
+                ("clearcoat.roughness", c.roughness),
+            ]);
+        }
+        if let Some(s) = &self.sheen {
+            unit_fields.push(("sheen.roughness", s.roughness));
+            if !colour(&s.color) {
+                return Some(("sheen.color", UNIT));
+            }
+        }
+        if let Some(a) = &self.anisotropy {
+            unit_fields.push(("anisotropy.strength", a.strength));
+            if !a.rotation.is_finite() {
+                return Some(("anisotropy.rotation", "must be finite"));
+            }
+        }
+        if let Some(i) = &self.iridescence {
+            unit_fields.push(("iridescence.factor", i.factor));
+            if !(i.ior >= 1.0 && i.ior.is_finite()) {
+                return Some(("iridescence.ior", "must be at least 1"));
+            }
+            if !(i.thickness >= 0.0 && i.thickness.is_finite()) {
+                return Some(("iridescence.thickness", "must be finite and not negative"));
+            }
+        }
+        if let Some(d) = &self.diffuse_transmission {
+            unit_fields.push(("diffuse_transmission.factor", d.factor));
+            if !colour(&d.color) {
+                return Some(("diffuse_transmission.color", UNIT));
+            }
+        }
+        if let Some((name, _)) = unit_fields.into_iter().find(|&(_, v)| !unit(v)) {
+            return Some((name, UNIT));
+        }
+        if self.specular_color.is_some_and(|c| !colour(&c)) {
+            return Some(("specular_color", UNIT));
+        }
+        if !(self.dispersion >= 0.0 && self.dispersion.is_finite()) {
+            return Some(("dispersion", "must be finite and not negative"));
+        }
+        None
+    }
+}
