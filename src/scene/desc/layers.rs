@@ -80,63 +80,13 @@ fn film_thickness() -> f32 {
 
 impl MaterialDesc {
     pub(super) fn to_layers(&self) -> MaterialLayers {
-        let on = |strength: f32| strength > 0.0;
         MaterialLayers {
             specular_color: self.specular_color.map_or(Vec3::ONE, Vec3::from),
-            clearcoat: self
-                .clearcoat
-                .as_ref()
-                .filter(|c| on(c.factor))
-                .map(|c| Clearcoat {
-                    factor: c.factor,
-                    factor_tex: None,
-                    roughness: c.roughness,
-                    roughness_tex: None,
-                    normal_tex: None,
-                    normal_scale: 1.0,
-                }),
-            sheen: self
-                .sheen
-                .as_ref()
-                .filter(|s| Vec3::from(s.color) != Vec3::ZERO)
-                .map(|s| Sheen {
-                    color: s.color.into(),
-                    color_tex: None,
-                    roughness: s.roughness,
-                    roughness_tex: None,
-                }),
-            anisotropy: self
-                .anisotropy
-                .as_ref()
-                .filter(|a| on(a.strength))
-                .map(|a| Anisotropy {
-                    strength: a.strength,
-                    rotation: a.rotation.to_radians(),
-                    texture: None,
-                }),
-            iridescence: self
-                .iridescence
-                .as_ref()
-                .filter(|i| on(i.factor))
-                .map(|i| Iridescence {
-                    factor: i.factor,
-                    factor_tex: None,
-                    ior: i.ior,
-                    // Without a thickness texture the film is `thickness_max` thick.
-                    thickness_min: i.thickness,
-                    thickness_max: i.thickness,
-                    thickness_tex: None,
-                }),
-            diffuse_transmission: self
-                .diffuse_transmission
-                .as_ref()
-                .filter(|d| on(d.factor))
-                .map(|d| DiffuseTransmission {
-                    factor: d.factor,
-                    factor_tex: None,
-                    color: d.color.into(),
-                    color_tex: None,
-                }),
+            clearcoat: layer(&self.clearcoat),
+            sheen: layer(&self.sheen),
+            anisotropy: layer(&self.anisotropy),
+            iridescence: layer(&self.iridescence),
+            diffuse_transmission: layer(&self.diffuse_transmission),
             dispersion: self.dispersion,
             ..MaterialLayers::default()
         }
@@ -191,5 +141,79 @@ impl MaterialDesc {
             return Some(("dispersion", "must be finite and not negative"));
         }
         None
+    }
+}
+
+/// A layer's table: the layer it turns on, none at strength 0 (as the glTF loader has it).
+trait LayerDesc {
+    type Layer;
+    fn layer(&self) -> Option<Self::Layer>;
+}
+
+fn layer<D: LayerDesc>(desc: &Option<D>) -> Option<D::Layer> {
+    desc.as_ref().and_then(D::layer)
+}
+
+impl LayerDesc for ClearcoatDesc {
+    type Layer = Clearcoat;
+    fn layer(&self) -> Option<Clearcoat> {
+        (self.factor > 0.0).then_some(Clearcoat {
+            factor: self.factor,
+            factor_tex: None,
+            roughness: self.roughness,
+            roughness_tex: None,
+            normal_tex: None,
+            normal_scale: 1.0,
+        })
+    }
+}
+
+impl LayerDesc for SheenDesc {
+    type Layer = Sheen;
+    fn layer(&self) -> Option<Sheen> {
+        (self.color != [0.0; 3]).then_some(Sheen {
+            color: self.color.into(),
+            color_tex: None,
+            roughness: self.roughness,
+            roughness_tex: None,
+        })
+    }
+}
+
+impl LayerDesc for AnisotropyDesc {
+    type Layer = Anisotropy;
+    fn layer(&self) -> Option<Anisotropy> {
+        (self.strength > 0.0).then_some(Anisotropy {
+            strength: self.strength,
+            rotation: self.rotation.to_radians(),
+            texture: None,
+        })
+    }
+}
+
+impl LayerDesc for IridescenceDesc {
+    type Layer = Iridescence;
+    fn layer(&self) -> Option<Iridescence> {
+        (self.factor > 0.0).then_some(Iridescence {
+            factor: self.factor,
+            factor_tex: None,
+            ior: self.ior,
+            // Without a thickness texture the film is `thickness_max` thick.
+            thickness_min: self.thickness,
+            thickness_max: self.thickness,
+            thickness_tex: None,
+        })
+    }
+}
+
+impl LayerDesc for DiffuseTransmissionDesc {
+    type Layer = DiffuseTransmission;
+    fn layer(&self) -> Option<DiffuseTransmission> {
+        (self.factor > 0.0).then_some(DiffuseTransmission {
+            factor: self.factor,
+            factor_tex: None,
+            color: self.color.into(),
+            color_tex: None,
+        })
     }
 }

@@ -270,6 +270,8 @@ name = "off"
 clearcoat = { factor = 0 }
 sheen = { color = [0, 0, 0] }
 anisotropy = { strength = 0 }
+iridescence = { factor = 0 }
+diffuse_transmission = { factor = 0 }
 "#,
     )
     .unwrap();
