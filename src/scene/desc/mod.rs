@@ -149,8 +149,12 @@ pub fn load_str(path: &Path, text: &str) -> Result<Scene, LoadError> {
             )
         })
     };
+    // Each file is read once, however many assets name it (a copy of the loaded scene is far
+    // cheaper than parsing and decoding its textures again).
+    let mut loaded = HashMap::new();
     for a in &desc.asset {
-        add_asset(&mut scene, a, dir, (frame_time, shutter), &lookup, &at)?;
+        let t = (frame_time, shutter);
+        add_asset(&mut scene, a, dir, t, &mut loaded, &lookup, &at)?;
     }
     add_objects(&mut scene, &desc.object, &named, &at)?;
     for l in &desc.light {
@@ -207,6 +211,7 @@ fn add_asset(
     a: &AssetDesc,
     dir: &Path,
     (frame_time, shutter): (f32, [f32; 2]),
+    loaded: &mut HashMap<PathBuf, Scene>,
     lookup: &dyn Fn(&Spanned<String>) -> Result<u32, LoadError>,
     at: &At,
 ) -> Result<(), LoadError> {
@@ -224,8 +229,18 @@ fn add_asset(
             ),
         ));
     }
-    let mut asset = Scene::load(&file)
-        .map_err(|e| at(a.path.span(), format!("asset '{}': {e}", rel.display())))?;
+    let mut asset = match loaded.get(&file) {
+        // Its load warnings were given with its first use.
+        Some(s) => Scene {
+            warnings: Vec::new(),
+            ..s.clone()
+        },
+        None => {
+            let s = Scene::load(&file)
+                .map_err(|e| at(a.path.span(), format!("asset '{}': {e}", rel.display())))?;
+            loaded.entry(file.clone()).or_insert(s).clone()
+        }
+    };
     if let Some(why) = a.transform.problem() {
         return Err(at(
             a.path.span(),

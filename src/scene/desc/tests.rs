@@ -349,3 +349,23 @@ fn material_layers_out_of_range_are_named() {
         file_materials("[[material]]\nname = \"m\"\nsheen = { colour = [1, 1, 1] }\n").unwrap_err();
     assert!(e.contains("line 3") && e.contains("colour"), "{e}");
 }
+
+#[test]
+fn an_asset_named_twice_is_read_once_and_warns_once() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "t.obj",
+        "mtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    );
+    let p = write(
+        dir.path(),
+        "s.toml",
+        "[[asset]]\npath = \"t.obj\"\n\n[[asset]]\npath = \"t.obj\"\ntransform = { translate = [5, 0, 0] }\n",
+    );
+    let s = load(&p).unwrap();
+    assert_eq!(s.instances.len(), 2);
+    assert!((s.world_triangle(1, 0)[0] - Vec3::new(5.0, 0.0, 0.0)).length() < 1e-6);
+    let warned: Vec<_> = s.warnings.iter().filter(|w| w.contains("t.obj")).collect();
+    assert_eq!(warned.len(), 1, "{:?}", s.warnings);
+}
