@@ -149,9 +149,7 @@ pub fn load_str(path: &Path, text: &str) -> Result<Scene, LoadError> {
             )
         })
     };
-    // Each file is read once, however many assets name it (a copy of the loaded scene is far
-    // cheaper than parsing and decoding its textures again).
-    let mut loaded = HashMap::new();
+    let mut loaded = AssetFiles::new(desc.asset.iter().map(|a| dir.join(a.path.get_ref())));
     for a in &desc.asset {
         let t = (frame_time, shutter);
         add_asset(&mut scene, a, dir, t, &mut loaded, &lookup, &at)?;
@@ -206,12 +204,55 @@ fn add_materials(
 
 /// Loads one asset, posed at `frame_time` over `shutter`, and appends it placed by its transforms with
 /// its materials overridden as the file says.
+/// The asset files of a scene file, each read once however many assets name it: a copy of the
+/// loaded scene is far cheaper than parsing and decoding its textures again.
+struct AssetFiles {
+    /// Uses still to come, per file.
+    uses: HashMap<PathBuf, usize>,
+    /// Files read and named again later.
+    kept: HashMap<PathBuf, Scene>,
+}
+
+impl AssetFiles {
+    fn new(files: impl Iterator<Item = PathBuf>) -> Self {
+        let mut uses = HashMap::new();
+        for f in files {
+            *uses.entry(f).or_insert(0) += 1;
+        }
+        Self {
+            uses,
+            kept: HashMap::new(),
+        }
+    }
+
+    /// The scene of `file` for its next use: read at its first, kept while more follow (the load
+    /// warnings come with the first only).
+    fn take(&mut self, file: &Path) -> Result<Scene, LoadError> {
+        let scene = match self.kept.remove(file) {
+            Some(s) => s,
+            None => Scene::load(file)?,
+        };
+        let left = self.uses.get_mut(file).map_or(0, |n| {
+            *n = n.saturating_sub(1);
+            *n
+        });
+        if left > 0 {
+            let copy = Scene {
+                warnings: Vec::new(),
+                ..scene.clone()
+            };
+            self.kept.insert(file.to_path_buf(), copy);
+        }
+        Ok(scene)
+    }
+}
+
 fn add_asset(
     scene: &mut Scene,
     a: &AssetDesc,
     dir: &Path,
     (frame_time, shutter): (f32, [f32; 2]),
-    loaded: &mut HashMap<PathBuf, Scene>,
+    loaded: &mut AssetFiles,
     lookup: &dyn Fn(&Spanned<String>) -> Result<u32, LoadError>,
     at: &At,
 ) -> Result<(), LoadError> {
@@ -229,18 +270,9 @@ fn add_asset(
             ),
         ));
     }
-    let mut asset = match loaded.get(&file) {
-        // Its load warnings were given with its first use.
-        Some(s) => Scene {
-            warnings: Vec::new(),
-            ..s.clone()
-        },
-        None => {
-            let s = Scene::load(&file)
-                .map_err(|e| at(a.path.span(), format!("asset '{}': {e}", rel.display())))?;
-            loaded.entry(file.clone()).or_insert(s).clone()
-        }
-    };
+    let mut asset = loaded
+        .take(&file)
+        .map_err(|e| at(a.path.span(), format!("asset '{}': {e}", rel.display())))?;
     if let Some(why) = a.transform.problem() {
         return Err(at(
             a.path.span(),
