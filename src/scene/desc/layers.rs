@@ -10,7 +10,7 @@ use glam::Vec3;
 use serde::Deserialize;
 
 use super::light::white;
-use super::material::MaterialDesc;
+use super::material::{out_of_range, MaterialDesc, Range};
 use crate::scene::layers::{
     Anisotropy, Clearcoat, DiffuseTransmission, Iridescence, MaterialLayers, Sheen,
 };
@@ -32,7 +32,7 @@ pub(super) struct ClearcoatDesc {
 pub(super) struct SheenDesc {
     #[serde(default = "white")]
     color: [f32; 3],
-    #[serde(default = "half")]
+    #[serde(default = "super::material::half")]
     roughness: f32,
 }
 
@@ -67,9 +67,6 @@ pub(super) struct DiffuseTransmissionDesc {
     color: [f32; 3],
 }
 
-fn half() -> f32 {
-    0.5
-}
 /// KHR_materials_iridescence's defaults.
 fn film_ior() -> f32 {
     1.3
@@ -92,55 +89,42 @@ impl MaterialDesc {
         }
     }
 
-    /// The first field out of its physical range, as `(field, why)`.
+    /// The first layer field out of its physical range, as `(field, why)`.
     pub(super) fn layers_range_error(&self) -> Option<(&'static str, &'static str)> {
-        const UNIT: &str = "must lie in [0, 1]";
-        let unit = |v: f32| (0.0..=1.0).contains(&v);
-        let colour = |c: &[f32; 3]| c.iter().all(|&v| unit(v));
-        let mut unit_fields = vec![];
+        use Range::{AtLeastOne, Finite, NonNegative, Unit};
+        let colour = |field, c: [f32; 3]| c.map(|v| (field, v, Unit));
+        let mut checks = vec![("dispersion", self.dispersion, NonNegative)];
+        if let Some(c) = self.specular_color {
+            checks.extend(colour("specular_color", c));
+        }
         if let Some(c) = &self.clearcoat {
-            unit_fields.extend([
-                ("clearcoat.factor", c.factor),
-                ("clearcoat.roughness", c.roughness),
+            checks.extend([
+                ("clearcoat.factor", c.factor, Unit),
+                ("clearcoat.roughness", c.roughness, Unit),
             ]);
         }
         if let Some(s) = &self.sheen {
-            unit_fields.push(("sheen.roughness", s.roughness));
-            if !colour(&s.color) {
-                return Some(("sheen.color", UNIT));
-            }
+            checks.extend(colour("sheen.color", s.color));
+            checks.push(("sheen.roughness", s.roughness, Unit));
         }
         if let Some(a) = &self.anisotropy {
-            unit_fields.push(("anisotropy.strength", a.strength));
-            if !a.rotation.is_finite() {
-                return Some(("anisotropy.rotation", "must be finite"));
-            }
+            checks.extend([
+                ("anisotropy.strength", a.strength, Unit),
+                ("anisotropy.rotation", a.rotation, Finite),
+            ]);
         }
         if let Some(i) = &self.iridescence {
-            unit_fields.push(("iridescence.factor", i.factor));
-            if !(i.ior >= 1.0 && i.ior.is_finite()) {
-                return Some(("iridescence.ior", "must be at least 1"));
-            }
-            if !(i.thickness >= 0.0 && i.thickness.is_finite()) {
-                return Some(("iridescence.thickness", "must be finite and not negative"));
-            }
+            checks.extend([
+                ("iridescence.factor", i.factor, Unit),
+                ("iridescence.ior", i.ior, AtLeastOne),
+                ("iridescence.thickness", i.thickness, NonNegative),
+            ]);
         }
         if let Some(d) = &self.diffuse_transmission {
-            unit_fields.push(("diffuse_transmission.factor", d.factor));
-            if !colour(&d.color) {
-                return Some(("diffuse_transmission.color", UNIT));
-            }
+            checks.push(("diffuse_transmission.factor", d.factor, Unit));
+            checks.extend(colour("diffuse_transmission.color", d.color));
         }
-        if let Some((name, _)) = unit_fields.into_iter().find(|&(_, v)| !unit(v)) {
-            return Some((name, UNIT));
-        }
-        if self.specular_color.is_some_and(|c| !colour(&c)) {
-            return Some(("specular_color", UNIT));
-        }
-        if !(self.dispersion >= 0.0 && self.dispersion.is_finite()) {
-            return Some(("dispersion", "must be finite and not negative"));
-        }
-        None
+        out_of_range(checks)
     }
 }
 

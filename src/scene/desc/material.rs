@@ -65,7 +65,7 @@ fn grey() -> [f32; 3] {
 pub(super) fn one() -> f32 {
     1.0
 }
-fn half() -> f32 {
+pub(super) fn half() -> f32 {
     0.5
 }
 fn ior() -> f32 {
@@ -105,21 +105,16 @@ impl MaterialDesc {
         if !self.base_color.iter().all(|&c| unit(c)) || !unit(self.alpha) {
             return Some(("base_color/alpha", "must lie in [0, 1]"));
         }
-        for (name, v) in [
-            ("metallic", self.metallic),
-            ("roughness", self.roughness),
-            ("specular", self.specular),
-            ("transmission", self.transmission),
-        ] {
-            if !unit(v) {
-                return Some((name, "must lie in [0, 1]"));
-            }
-        }
-        if !(self.ior >= 1.0 && self.ior.is_finite()) {
-            return Some(("ior", "must be at least 1"));
-        }
-        if !(self.thickness >= 0.0 && self.thickness.is_finite()) {
-            return Some(("thickness", "must be finite and not negative"));
+        let out = out_of_range([
+            ("metallic", self.metallic, Range::Unit),
+            ("roughness", self.roughness, Range::Unit),
+            ("specular", self.specular, Range::Unit),
+            ("transmission", self.transmission, Range::Unit),
+            ("ior", self.ior, Range::AtLeastOne),
+            ("thickness", self.thickness, Range::NonNegative),
+        ]);
+        if out.is_some() {
+            return out;
         }
         if !self.attenuation_color.iter().all(|&c| unit(c))
             || self
@@ -137,4 +132,43 @@ impl MaterialDesc {
         }
         self.layers_range_error()
     }
+}
+
+/// A physical range a scene-file value must lie in, with what its error says.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Range {
+    Unit,
+    AtLeastOne,
+    NonNegative,
+    Finite,
+}
+
+impl Range {
+    fn holds(self, v: f32) -> bool {
+        match self {
+            Range::Unit => (0.0..=1.0).contains(&v),
+            Range::AtLeastOne => v >= 1.0 && v.is_finite(),
+            Range::NonNegative => v >= 0.0 && v.is_finite(),
+            Range::Finite => v.is_finite(),
+        }
+    }
+
+    fn why(self) -> &'static str {
+        match self {
+            Range::Unit => "must lie in [0, 1]",
+            Range::AtLeastOne => "must be at least 1",
+            Range::NonNegative => "must be finite and not negative",
+            Range::Finite => "must be finite",
+        }
+    }
+}
+
+/// The first `(field, value, range)` whose value is out of its range, as `(field, why)`.
+pub(super) fn out_of_range(
+    values: impl IntoIterator<Item = (&'static str, f32, Range)>,
+) -> Option<(&'static str, &'static str)> {
+    values
+        .into_iter()
+        .find(|&(_, v, r)| !r.holds(v))
+        .map(|(field, _, r)| (field, r.why()))
 }
