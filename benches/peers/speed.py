@@ -4,6 +4,7 @@ camera, size, depth and thread count. A bench, not a test.
 
     speed.py OUTDIR [--glint target/release/glint] [--bpy PYTHON_WITH_BPY] [--spp 64]
              [--width 320] [--height 240] [--depth 5] [--threads 2] [--renderers glint,mitsuba,cycles]
+             [--seeds 2]
 
 This Python needs numpy, OpenEXR and mitsuba (`pip install mitsuba`; the llvm variant needs libLLVM:
 `apt-get install libllvm19`, found through DRJIT_LIBLLVM_PATH, default /usr/lib/x86_64-linux-gnu/libLLVM-19.so).
@@ -38,11 +39,14 @@ and normals, and gives each renderer the same materials:
 Depth: glint --max-depth D = Mitsuba max_depth D + 1 (path segments, 1 = emitters seen directly) =
 Cycles D - 1 bounces.
 
-Reported per renderer, in one run: sigma, the noise per sample (RMSE between two seeds times
-sqrt(spp / 2)), and sigma* the same without the 0.1% of pixels where the seeds differ most (where a
-few glints or fireflies carry the whole RMSE, sigma* says how the rest of the image converges); ms per sample (render time of the whole image / spp, load and build excluded; for
-Mitsuba after a 1-spp warm-up that compiles its kernels); time to RMSE 0.01 = (ms per sample) x
-(sigma / 0.01)^2; and the image mean relative to glint's (converged means should agree within 1%).
+Reported per renderer, in one run: sigma, the noise per sample (the root mean over pixels of each
+pixel's variance across `--seeds` independent renders, default 2, times spp; with two seeds the RMSE
+between them times sqrt(spp / 2)), and sigma* the same without the 0.1% of pixels of highest variance
+(where a few glints or fireflies carry the whole RMSE, sigma* says how the rest of the image
+converges; there two seeds give a noisy sigma, and more seeds at fewer spp a steadier one); ms per
+sample (render time of the whole image / spp, load and build excluded; for Mitsuba after a 1-spp
+warm-up that compiles its kernels); time to RMSE 0.01 = (ms per sample) x (sigma / 0.01)^2; and
+the image mean relative to glint's (converged means should agree within 1%).
 """
 import argparse
 import json
@@ -384,8 +388,11 @@ def main():
     ap.add_argument("--depth", type=int, default=5)
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--renderers", default="glint,mitsuba,cycles")
+    ap.add_argument("--seeds", type=int, default=2, help="independent renders per renderer (at least 2)")
     ap.add_argument("--scene", choices=sorted(SCENES), default="bunny-cornell")
     a = ap.parse_args()
+    if a.seeds < 2:
+        ap.error("--seeds must be at least 2")
     os.environ.setdefault("DRJIT_LIBLLVM_PATH", "/usr/lib/x86_64-linux-gnu/libLLVM-19.so")
     out = Path(a.out).resolve()
     out.mkdir(parents=True, exist_ok=True)
@@ -397,17 +404,21 @@ def main():
     for name in a.renderers.split(","):
         base, _, option = name.partition(":")
         run = (lambda a, parts, out, s: glint(a, parts, out, s, option)) if option else renderers[base]
-        (i1, t1), (i2, t2) = (run(a, parts, out, s) for s in (1, 2))
-        write_exr(out / f"{name}_mean.exr", (i1 + i2) / 2)
-        d2 = np.sort(((i1 - i2) ** 2).mean(-1).ravel())
-        sigma = float(np.sqrt(d2.mean()) * math.sqrt(a.spp / 2))
-        trimmed = float(np.sqrt(d2[:len(d2) - len(d2) // 1000].mean()) * math.sqrt(a.spp / 2))
-        ms = 1e3 * (t1 + t2) / (2 * a.spp)
+        images, times = zip(*(run(a, parts, out, s) for s in range(1, a.seeds + 1)))
+        stack = np.stack(images)
+        mean = stack.mean(0)
+        write_exr(out / f"{name}_mean.exr", mean)
+        # Each pixel's variance of one sample: the unbiased variance across the seeds' images times spp
+        # (with two seeds, the squared difference / 2: the RMSE between them times sqrt(spp / 2)).
+        var = np.sort((stack.var(0, ddof=1) * a.spp).mean(-1).ravel())
+        sigma = float(np.sqrt(var.mean()))
+        trimmed = float(np.sqrt(var[:len(var) - len(var) // 1000].mean()))
+        ms = 1e3 * sum(times) / (len(times) * a.spp)
         rows.append({"renderer": name, "sigma": sigma, "sigma_trimmed": trimmed, "ms_per_spp": ms,
-                     "s_to_rmse_0.01": ms / 1e3 * (sigma / 0.01) ** 2, "mean": float(((i1 + i2) / 2).mean())})
+                     "s_to_rmse_0.01": ms / 1e3 * (sigma / 0.01) ** 2, "mean": float(mean.mean())})
         print(json.dumps(rows[-1]), flush=True)
     ref = rows[0]
-    lines = [f"{a.scene}, {a.width}x{a.height}, {a.spp} spp x 2 seeds, glint depth {a.depth}, {a.threads} threads, "
+    lines = [f"{a.scene}, {a.width}x{a.height}, {a.spp} spp x {a.seeds} seeds, glint depth {a.depth}, {a.threads} threads, "
              f"load average {os.getloadavg()[0]:.1f}", "",
              f"| renderer | sigma | sigma* | ms/spp | s to RMSE 0.01 | mean / {ref['renderer']}'s | time ratio to {ref['renderer']} |",
              "|---|---|---|---|---|---|---|"]
