@@ -30,6 +30,8 @@ fn a_denoised_noisy_render_is_closer_to_the_reference_than_the_raw_one() {
     };
     let reference = render(256, 11).image;
     let noisy = render(4, 1);
+    // The guides know how many samples they average (what the default guide mode decides by).
+    assert_eq!(noisy.features.as_ref().map(|f| f.min_spp), Some(4));
     let d = Denoiser::new(2, DenoiseOptions::default()).unwrap();
     let guides = noisy.features.as_ref().map(|f| f.guides());
     let denoised = d.denoise(&noisy.image, guides).unwrap();

@@ -118,7 +118,8 @@ impl Args {
 #[derive(clap::Args, Debug, Default)]
 pub struct DenoiseArgs {
     /// Denoise the image (Open Image Denoise's RT filter, HDR, guided by albedo and normal images
-    /// taken at the first non-specular surface, prefiltered unless --denoise-guides says otherwise).
+    /// taken at the first non-specular surface: prefiltered below 64 spp, trusted from there, unless
+    /// --denoise-guides says otherwise).
     #[arg(long)]
     pub denoise: bool,
     /// The denoiser's speed/quality trade.

@@ -72,6 +72,8 @@ pub struct FeatureImages {
     pub instance: Vec<u32>,
     pub material: Vec<u32>,
     pub variance: Vec<Vec3>,
+    /// The fewest samples any pixel's features average.
+    pub min_spp: u32,
 }
 
 impl FeatureImages {
@@ -80,6 +82,7 @@ impl FeatureImages {
         super::denoise::Guides {
             albedo: &self.albedo,
             normal: &self.normal,
+            samples: self.min_spp,
         }
     }
 }

@@ -102,8 +102,9 @@ impl FeatureAcc {
     }
 }
 
-/// The feature images from per-pixel sums (row-major).
-pub fn images(width: usize, height: usize, acc: &[FeatureAcc]) -> FeatureImages {
+/// The feature images from per-pixel sums (row-major), of pixels that took at least `min_spp`
+/// samples each.
+pub fn images(width: usize, height: usize, acc: &[FeatureAcc], min_spp: u32) -> FeatureImages {
     let map = |f: &dyn Fn(&FeatureAcc) -> Vec3| acc.iter().map(f).collect::<Vec<_>>();
     FeatureImages {
         width,
@@ -121,6 +122,7 @@ pub fn images(width: usize, height: usize, acc: &[FeatureAcc]) -> FeatureImages 
         instance: acc.iter().map(|a| a.instance).collect(),
         material: acc.iter().map(|a| a.material).collect(),
         variance: map(&|a| a.variance()),
+        min_spp,
     }
 }
 
@@ -142,7 +144,7 @@ mod tests {
         // Mean 3, sample variance (4 + 1 + 0 + 9) / 3, over n = 4.
         let want = (14.0 / 3.0 / 4.0) as f32;
         assert!((a.variance() - Vec3::splat(want)).abs().max_element() < 1e-6);
-        let one = images(1, 1, &[a]);
+        let one = images(1, 1, &[a], 4);
         assert_eq!(one.depth, [f32::INFINITY]);
         assert_eq!(one.instance, [NO_ID]);
         assert_eq!(one.normal, [Vec3::ZERO]);

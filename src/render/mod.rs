@@ -618,15 +618,16 @@ fn collect(tiles: &[Tile], settings: &RenderSettings, rays: u64, rounds: u32) ->
         sum: a.sum,
         weight: a.w,
     });
+    let min_spp = spp.iter().copied().min().unwrap_or(0);
     let features = tiles.first().filter(|t| !t.features.is_empty()).map(|_| {
         let acc = per_pixel_features(tiles, w, h);
-        feature_film::images(w, h, &acc)
+        feature_film::images(w, h, &acc, min_spp)
     });
     let stats = RenderStats {
         rays,
         seconds: 0.0,
         samples: spp.iter().map(|&n| n as u64).sum(),
-        min_spp: spp.iter().copied().min().unwrap_or(0),
+        min_spp,
         max_spp: spp.iter().copied().max().unwrap_or(0),
         rounds,
     };

@@ -125,7 +125,8 @@ pub(super) fn run(
     };
     let mut albedo = flat(&mut g.albedo.iter().map(|a| a.to_array()));
     let mut normal = flat(&mut g.normal.iter().map(|n| n.to_array()));
-    if options.guides == GuideMode::Prefiltered {
+    let mode = options.guides.resolve(g.samples);
+    if mode == GuideMode::Prefiltered {
         // Each guide cleaned by an RT filter of its own, in place.
         for (name, buf) in [(c"albedo", &mut albedo), (c"normal", &mut normal)] {
             let p = buf.as_mut_ptr();
@@ -144,7 +145,7 @@ pub(super) fn run(
         (c"normal", normal.as_mut_ptr()),
         (c"output", out.as_mut_ptr()),
     ];
-    let clean = options.guides != GuideMode::Noisy;
+    let clean = mode != GuideMode::Noisy;
     let flags = [(c"hdr", true), (c"cleanAux", clean)];
     execute(device, size, &images, &flags, options.quality)?;
     Ok(out)

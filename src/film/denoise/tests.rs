@@ -43,6 +43,7 @@ fn denoising_brings_a_noisy_picture_closer_to_the_clean_one() {
     let guides = Some(Guides {
         albedo: &albedo,
         normal: &normal,
+        samples: 4,
     });
     let mut outs = vec![Denoiser::new(2, DenoiseOptions::default())
         .unwrap()
@@ -65,7 +66,18 @@ fn denoising_brings_a_noisy_picture_closer_to_the_clean_one() {
         assert!(e < raw / 4.0, "denoised relMSE {e} vs raw {raw}");
     }
     // The modes reach the library: declared-noisy and trusted guides pick different networks.
-    assert_ne!(outs[2].pixels, outs[3].pixels);
+    let [_, auto, prefiltered, noisy_guides, trusted] = &outs[..] else {
+        panic!("{} images", outs.len())
+    };
+    assert_ne!(noisy_guides.pixels, trusted.pixels);
+    // Guides of 4 samples a pixel are prefiltered by default, of 64 trusted.
+    assert_eq!(auto.pixels, prefiltered.pixels);
+    let many = guides.map(|g| Guides {
+        samples: TRUSTED_FROM_SPP,
+        ..g
+    });
+    let auto = Denoiser::new(2, DenoiseOptions::default()).unwrap();
+    assert_eq!(auto.denoise(&noisy, many).unwrap().pixels, trusted.pixels);
     // Alpha is kept.
     assert!(outs.iter().all(|o| o.pixels.iter().all(|p| p.w == 1.0)));
 }
@@ -88,9 +100,21 @@ fn guides_of_the_wrong_size_are_refused() {
             Some(Guides {
                 albedo: &albedo,
                 normal: &short,
+                samples: 1,
             }),
         )
         .err()
         .unwrap();
     assert!(err.to_string().contains("normal has 3 pixels"), "{err}");
+}
+
+#[test]
+fn auto_guides_are_trusted_from_enough_samples() {
+    use GuideMode::*;
+    assert_eq!(Auto.resolve(TRUSTED_FROM_SPP - 1), Prefiltered);
+    assert_eq!(Auto.resolve(TRUSTED_FROM_SPP), Trusted);
+    for mode in [Prefiltered, Noisy, Trusted] {
+        assert_eq!(mode.resolve(1), mode);
+        assert_eq!(mode.resolve(1 << 20), mode);
+    }
 }
