@@ -85,7 +85,7 @@ fn a_million_random_rays_per_model_hit_the_same_primitive() {
 
 fn check_agreement(name: &str, first: Backend, second: Backend, g: &compare::Agreement, took: f64) {
     eprintln!(
-        "{name}, {took:.2} s: {} rays, {} hits, {} same, {} ties, {} grazing, {} silhouette edges, {} alpha edges, {} mismatches, {} occlusion mismatches",
+        "{name}, {took:.2} s: {} rays, {} hits, {} same, {} ties, {} grazing, {} silhouette edges, {} alpha edges, {} at the origin, {} mismatches, {} occlusion mismatches",
         g.rays,
         g.hits,
         g.same,
@@ -93,6 +93,7 @@ fn check_agreement(name: &str, first: Backend, second: Backend, g: &compare::Agr
         g.grazing,
         g.edges,
         g.alpha_edges,
+        g.at_origin,
         g.mismatch_count,
         g.occlusion_mismatches
     );
@@ -109,6 +110,12 @@ fn check_agreement(name: &str, first: Backend, second: Backend, g: &compare::Agr
         g.alpha_edges <= rays / 10000,
         "{name}: {} alpha edges",
         g.alpha_edges
+    );
+    // An origin within a few ulps of a triangle's plane: one in a million here.
+    assert!(
+        g.at_origin <= rays / 100_000,
+        "{name}: {} at the origin",
+        g.at_origin
     );
     assert_eq!(g.occlusion_mismatches, 0, "{name}");
 }

@@ -22,8 +22,9 @@ pub type BvhAccel = Layered<Bvh>;
 
 /// Number of SAH bins per axis.
 const BINS: usize = 16;
-/// Leaves never hold more than this many triangles.
-const MAX_LEAF: usize = 4;
+/// Leaves never hold more than this many triangles (two packets: eight measured 7-9% faster than
+/// four on icosphere:8 and the same on ToyCar, with 20% less memory).
+const MAX_LEAF: usize = 8;
 /// Relative cost of a ray/box test against a ray/triangle-packet test, for the SAH.
 const TRAVERSAL_COST: f32 = 1.0;
 /// Subtrees smaller than this are built on the current thread.
@@ -183,6 +184,23 @@ impl Bvh {
         self.walk::<ANY, AvxSlabs>(scene, ray, base)
     }
 
+    /// Asks for the four cache lines of inner node `node`, pushed for later: by the time the walk
+    /// pops it they are often in (icosphere:8, 88 MB of nodes: 2-4% more rays a second).
+    #[inline(always)]
+    fn prefetch(&self, node: u32) {
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: `node` indexes `nodes` (it is a child index the tree holds), so the pointer and
+        // the node's 256 bytes after it are in bounds; a prefetch reads nothing into the program.
+        unsafe {
+            use std::arch::x86_64::*;
+            let p = self.nodes.as_ptr().add(node as usize).cast::<i8>();
+            _mm_prefetch::<_MM_HINT_T0>(p);
+            _mm_prefetch::<_MM_HINT_T0>(p.add(64));
+            _mm_prefetch::<_MM_HINT_T0>(p.add(128));
+            _mm_prefetch::<_MM_HINT_T0>(p.add(192));
+        }
+    }
+
     /// The walk proper. The nearest child hit goes on without a trip through the stack; the others
     /// are pushed farthest first (in lane order for `ANY`).
     #[inline(always)]
@@ -226,6 +244,9 @@ impl Bvh {
                         while mask != 0 {
                             let l = mask.trailing_zeros() as usize;
                             mask &= mask - 1;
+                            if node.count[l] == 0 {
+                                self.prefetch(node.child[l]);
+                            }
                             stack[sp].write((node.child[l], node.count[l], 0.0));
                             sp += 1;
                         }
@@ -249,6 +270,9 @@ impl Bvh {
                         n += 1;
                     }
                     for &(t, l) in order[1..n].iter().rev() {
+                        if node.count[l] == 0 {
+                            self.prefetch(node.child[l]);
+                        }
                         stack[sp].write((node.child[l], node.count[l], t));
                         sp += 1;
                     }

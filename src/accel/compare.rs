@@ -84,6 +84,10 @@ pub struct Agreement {
     /// Disagreements where the nearer hit's alpha is within `ALPHA_MARGIN` of its material's cutoff:
     /// the backends' barycentrics differ in the last bits, and so may the texture lookup.
     pub alpha_edges: usize,
+    /// Disagreements where the nearer hit lies within the rounding error of the hit point (the
+    /// tolerance of `close`) of the ray's origin: an origin within a few ulps of a triangle's plane,
+    /// where whether the ray leaving it touches it is decided by rounding.
+    pub at_origin: usize,
     /// Everything else, with the ray and both answers (at most `MAX_KEPT` kept).
     pub mismatches: Vec<(Ray, Option<Hit>, Option<Hit>)>,
     pub mismatch_count: usize,
@@ -167,6 +171,13 @@ fn close(scene: &Scene, magnitudes: &[f32], ray: &Ray, x: &Hit, y: &Hit) -> bool
     if diff <= T_TOLERANCE * t + 64.0 * f32::EPSILON * world {
         return true;
     }
+    diff <= T_TOLERANCE * t + point_error(scene, magnitudes, ray, &[*x, *y], world)
+}
+
+/// The rounding error of the hit points `hits` along `ray`, as a distance in `t`: 64 ulps of the
+/// largest coordinate involved (at least `world`) over the smallest cosine of incidence (for unit
+/// directions, as the compared rays have).
+fn point_error(scene: &Scene, magnitudes: &[f32], ray: &Ray, hits: &[Hit], world: f32) -> f32 {
     let of = |h: &Hit| match h.csg() {
         Some((object, _)) => {
             let b = scene.csg[object as usize].bounds();
@@ -174,11 +185,18 @@ fn close(scene: &Scene, magnitudes: &[f32], ray: &Ray, x: &Hit, y: &Hit) -> bool
         }
         None => magnitudes[h.inst as usize],
     };
-    let magnitude = world.max(of(x)).max(of(y));
-    let cos = incidence(scene, ray, x)
-        .min(incidence(scene, ray, y))
+    let magnitude = hits.iter().map(of).fold(world, f32::max);
+    let cos = hits
+        .iter()
+        .map(|h| incidence(scene, ray, h))
+        .fold(1.0f32, f32::min)
         .max(GRAZING_COS);
-    diff <= T_TOLERANCE * t + 64.0 * f32::EPSILON * magnitude / cos
+    64.0 * f32::EPSILON * magnitude / cos
+}
+
+/// Whether `hit` is within the rounding error of its point of the ray's origin.
+fn at_origin(scene: &Scene, magnitudes: &[f32], ray: &Ray, hit: &Option<Hit>) -> bool {
+    hit.is_some_and(|h| h.t <= point_error(scene, magnitudes, ray, &[h], ray.o.abs().max_element()))
 }
 
 /// Per instance: the largest object-space coordinate of its mesh, in world units.
@@ -242,6 +260,7 @@ pub fn compare(scene: &Scene, a: &dyn Accel, b: &dyn Accel, rays: &[Ray]) -> Agr
                     _ if grazes(scene, ray, &ha) || grazes(scene, ray, &hb) => g.grazing += 1,
                     _ if on_edge(scene, &nearer(ha, hb)) => g.edges += 1,
                     _ if on_alpha_edge(scene, &nearer(ha, hb)) => g.alpha_edges += 1,
+                    _ if at_origin(scene, &magnitudes, ray, &nearer(ha, hb)) => g.at_origin += 1,
                     _ => {
                         g.mismatch_count += 1;
                         if g.mismatches.len() < MAX_KEPT {
@@ -264,6 +283,7 @@ pub fn compare(scene: &Scene, a: &dyn Accel, b: &dyn Accel, rays: &[Ray]) -> Agr
             x.same += y.same;
             x.ties += y.ties;
             x.grazing += y.grazing;
+            x.at_origin += y.at_origin;
             x.edges += y.edges;
             x.alpha_edges += y.alpha_edges;
             x.mismatch_count += y.mismatch_count;
