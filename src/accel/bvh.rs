@@ -184,21 +184,26 @@ impl Bvh {
         self.walk::<ANY, AvxSlabs>(scene, ray, base)
     }
 
-    /// Asks for the four cache lines of inner node `node`, pushed for later: by the time the walk
-    /// pops it they are often in (icosphere:8, 88 MB of nodes: 2-4% more rays a second).
+    /// Asks for the cache lines of child `child` (of `count` triangles) when it is an inner node
+    /// pushed for later: by the time the walk pops it they are often in (icosphere:8, 88 MB of
+    /// nodes: 2-4% more rays a second). Leaves are not prefetched: their packets are another array.
     #[inline(always)]
-    fn prefetch(&self, node: u32) {
+    fn prefetch(&self, child: u32, count: u32) {
         #[cfg(target_arch = "x86_64")]
-        // SAFETY: `node` indexes `nodes` (it is a child index the tree holds), so the pointer and
-        // the node's 256 bytes after it are in bounds; a prefetch reads nothing into the program.
-        unsafe {
-            use std::arch::x86_64::*;
-            let p = self.nodes.as_ptr().add(node as usize).cast::<i8>();
-            _mm_prefetch::<_MM_HINT_T0>(p);
-            _mm_prefetch::<_MM_HINT_T0>(p.add(64));
-            _mm_prefetch::<_MM_HINT_T0>(p.add(128));
-            _mm_prefetch::<_MM_HINT_T0>(p.add(192));
+        if count == 0 {
+            let p = self.nodes[child as usize..].as_ptr().cast::<i8>();
+            for line in (0..std::mem::size_of::<NodeW>()).step_by(64) {
+                // SAFETY: `p` points at node `child` (the slice index checked it), so `p + line` for
+                // `line` within the node's size is in bounds; a prefetch reads nothing into the program.
+                unsafe {
+                    std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(
+                        p.add(line),
+                    )
+                };
+            }
         }
+        #[cfg(not(target_arch = "x86_64"))]
+        let _ = (child, count);
     }
 
     /// The walk proper. The nearest child hit goes on without a trip through the stack; the others
@@ -244,9 +249,7 @@ impl Bvh {
                         while mask != 0 {
                             let l = mask.trailing_zeros() as usize;
                             mask &= mask - 1;
-                            if node.count[l] == 0 {
-                                self.prefetch(node.child[l]);
-                            }
+                            self.prefetch(node.child[l], node.count[l]);
                             stack[sp].write((node.child[l], node.count[l], 0.0));
                             sp += 1;
                         }
@@ -270,9 +273,7 @@ impl Bvh {
                         n += 1;
                     }
                     for &(t, l) in order[1..n].iter().rev() {
-                        if node.count[l] == 0 {
-                            self.prefetch(node.child[l]);
-                        }
+                        self.prefetch(node.child[l], node.count[l]);
                         stack[sp].write((node.child[l], node.count[l], t));
                         sp += 1;
                     }
