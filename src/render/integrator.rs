@@ -1,7 +1,7 @@
 //! The one integrator: a unidirectional path tracer with next-event estimation, multiple importance
 //! sampling between light and BSDF sampling (power heuristic), and Russian roulette.
 
-use glam::{Vec3, Vec4};
+use glam::{Vec2, Vec3, Vec4};
 
 use super::features::PathFeatures;
 use super::light::{LightContext, LightSampler, LightSet};
@@ -182,8 +182,11 @@ impl<'a> Integrator<'a> {
             {
                 break;
             }
-            let mut si = SurfaceInteraction::new(self.scene, &hit, &ray);
+            // The triangle's data is fetched while the sampler draws this vertex's dimensions.
+            self.scene.prefetch_triangle(&hit);
             let mut u_choice = sampler.get_1d(Dim::LightChoice, bounce);
+            let u_light = sampler.get_2d(Dim::Light, bounce);
+            let mut si = SurfaceInteraction::new(self.scene, &hit, &ray);
             if si.bsdf.dispersion.is_some() {
                 u_choice = st.follow_one_channel(&mut si, u_choice);
             }
@@ -204,9 +207,8 @@ impl<'a> Integrator<'a> {
             let nee = self.next_event::<THIN>(
                 &si,
                 &leave,
-                (bounce, u_choice),
+                (bounce, u_choice, u_light),
                 st.beta,
-                sampler,
                 &mut rays,
             );
             if let Some(c) = nee {
@@ -244,12 +246,10 @@ impl<'a> Integrator<'a> {
         &self,
         si: &SurfaceInteraction,
         leave: &Leave,
-        (bounce, u_choice): (u32, f32),
+        (_bounce, u_choice, u_light): (u32, f32, Vec2),
         beta: Vec3,
-        sampler: &mut impl Sampler,
         rays: &mut u32,
     ) -> Option<Vec3> {
-        let u_light = sampler.get_2d(Dim::Light, bounce);
         if si.bsdf.is_delta() {
             return None;
         }

@@ -715,6 +715,23 @@ impl Scene {
         self.csg.iter().fold(meshes, |b, c| b.union(c.bounds()))
     }
 
+    /// Asks the cache for the vertex indices of the triangle `hit` names (a hint: shading reads them
+    /// next, and on a large mesh they are rarely in the cache after the ray query).
+    #[inline]
+    pub fn prefetch_triangle(&self, hit: &Hit) {
+        #[cfg(target_arch = "x86_64")]
+        if hit.csg().is_none() {
+            if let Some(tri) = self.mesh_of(hit.inst).indices.get(hit.prim as usize) {
+                // SAFETY: a prefetch of a valid reference reads nothing into the program.
+                unsafe {
+                    std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(
+                        (tri as *const [u32; 3]).cast(),
+                    )
+                };
+            }
+        }
+    }
+
     /// The hit point and (unit, unoriented) geometric normal of a hit on a triangle or a CSG surface.
     pub fn hit_geometry(&self, hit: &Hit, ray: &Ray) -> (Vec3, Vec3) {
         if let Some((object, surface)) = hit.csg() {
