@@ -71,13 +71,17 @@ pub fn sobol_u32_reference(mut index: u32, dim: usize) -> u32 {
 /// Nested uniform (Owen) scrambling of a 32-bit fixed-point value: reverse the bits, apply a hash in
 /// which every bit depends only on lower bits (Laine-Karras style, with Vegdahl's constants), reverse back.
 pub fn owen_scramble(x: u32, seed: u32) -> u32 {
-    let mut v = x.reverse_bits();
+    laine_karras(x.reverse_bits(), seed).reverse_bits()
+}
+
+/// The scramble of `owen_scramble` on a bit-reversed value (every bit depends only on lower bits).
+fn laine_karras(mut v: u32, seed: u32) -> u32 {
     v ^= v.wrapping_mul(0x3d20_adea);
     v = v.wrapping_add(seed);
     v = v.wrapping_mul((seed >> 16) | 1);
     v ^= v.wrapping_mul(0x0552_6c56);
     v ^= v.wrapping_mul(0x53a2_2864);
-    v.reverse_bits()
+    v
 }
 
 /// What a flat dimension's index is offset by before it is hashed.
@@ -112,7 +116,8 @@ fn to_unit(x: u32) -> f32 {
 pub struct SobolSampler {
     seed: u64,
     pixel: u64,
-    index: u32,
+    /// The sample index, bit-reversed (as every dimension's shuffle takes it).
+    index_reversed: u32,
 }
 
 impl SobolSampler {
@@ -120,15 +125,16 @@ impl SobolSampler {
         Self {
             seed,
             pixel: 0,
-            index: 0,
+            index_reversed: 0,
         }
     }
 
     /// Scrambled values of the shuffled point in Sobol dimensions 0 and 1 for flat dimension `d`.
     fn point(&self, d: u32, both: bool) -> (u32, u32) {
         let h = mix64(self.pixel ^ dimension_key(d));
-        let shuffled = owen_scramble(self.index, h as u32);
-        let x = owen_scramble(sobol_u32(shuffled, 0), (h >> 32) as u32);
+        // owen_scramble(index) and owen_scramble(sobol_u32(.., 0)), whose reversals cancel.
+        let shuffled = laine_karras(self.index_reversed, h as u32).reverse_bits();
+        let x = laine_karras(shuffled, (h >> 32) as u32).reverse_bits();
         let y = if both {
             owen_scramble(sobol_u32(shuffled, 1), mix64(h) as u32)
         } else {
@@ -141,7 +147,7 @@ impl SobolSampler {
 impl Sampler for SobolSampler {
     fn start(&mut self, x: u32, y: u32, index: u32) {
         self.pixel = pixel_key(self.seed, x, y);
-        self.index = index;
+        self.index_reversed = index.reverse_bits();
     }
 
     fn get_1d(&mut self, dim: Dim, bounce: u32) -> f32 {
