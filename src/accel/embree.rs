@@ -32,8 +32,21 @@ struct RayHit {
     _pad: [u32; 4],
 }
 
+/// Eight `RTCRayHit`s in Embree's SOA packet, with room for the eight `instPrimID` lanes 4.4
+/// appends (640 bytes in the bindings, 672 in the library).
+#[repr(C, align(32))]
+struct RayHit8 {
+    rh: sys::RTCRayHit8,
+    _pad: [u32; 8],
+}
+
+/// The active lanes of an 8-wide query (Embree needs the mask 32-byte aligned).
+#[repr(C, align(32))]
+struct Valid8([i32; 8]);
+
 // The layout the library expects: 96-byte ray-hits, and a 48-byte RTCRay (unchanged since 4.0).
 const _: () = assert!(size_of::<RayHit>() == 96);
+const _: () = assert!(size_of::<RayHit8>() == 672);
 const _: () = assert!(size_of::<sys::RTCRay>() == 48);
 const _: () = assert!(size_of::<sys::RTCRayHit>() == 80);
 
@@ -78,29 +91,72 @@ impl RayHit {
         }
     }
 
-    /// Our hit from Embree's answer. Top-level geometry IDs are instance indices (see `build`): an
-    /// instanced hit names its instance in `instID[0]`, a flattened one in `geomID`; IDs from
-    /// `csg_base` on are CSG objects (user geometries), reported with `CSG_BIT`.
     fn hit(&self, csg_base: u32) -> Option<Hit> {
         let h = &self.rh.hit;
-        if h.geomID == INVALID_ID {
-            return None;
-        }
-        let inst = if h.instID[0] != INVALID_ID {
-            h.instID[0]
-        } else if h.geomID >= csg_base {
-            (h.geomID - csg_base) | CSG_BIT
-        } else {
-            h.geomID
-        };
-        Some(Hit {
-            t: self.rh.ray.tfar,
-            u: h.u,
-            v: h.v,
-            inst,
-            prim: h.primID,
-        })
+        hit_of(
+            (h.geomID, h.instID[0], h.primID),
+            (self.rh.ray.tfar, h.u, h.v),
+            csg_base,
+        )
     }
+}
+
+impl RayHit8 {
+    /// The packet of up to eight `rays` (ids `first + lane`); lanes past them are left inactive.
+    fn new(rays: &[Ray], first: u32) -> (Self, Valid8) {
+        // SAFETY: RTCRayHit8 is plain f32/u32 arrays, for which all-zero bytes are valid.
+        let mut p: Self = unsafe { std::mem::zeroed() };
+        let mut valid = Valid8([0; 8]);
+        for (lane, ray) in rays.iter().enumerate().take(8) {
+            let r = rtc_ray(ray, first + lane as u32);
+            let (q, h) = (&mut p.rh.ray, &mut p.rh.hit);
+            (q.org_x[lane], q.org_y[lane], q.org_z[lane]) = (r.org_x, r.org_y, r.org_z);
+            (q.dir_x[lane], q.dir_y[lane], q.dir_z[lane]) = (r.dir_x, r.dir_y, r.dir_z);
+            (q.tnear[lane], q.tfar[lane], q.time[lane]) = (r.tnear, r.tfar, r.time);
+            (q.mask[lane], q.id[lane], q.flags[lane]) = (r.mask, r.id, r.flags);
+            (h.primID[lane], h.geomID[lane], h.instID[0][lane]) =
+                (INVALID_ID, INVALID_ID, INVALID_ID);
+            valid.0[lane] = -1;
+        }
+        (p, valid)
+    }
+
+    fn hit(&self, lane: usize, csg_base: u32) -> Option<Hit> {
+        let h = &self.rh.hit;
+        hit_of(
+            (h.geomID[lane], h.instID[0][lane], h.primID[lane]),
+            (self.rh.ray.tfar[lane], h.u[lane], h.v[lane]),
+            csg_base,
+        )
+    }
+}
+
+/// Our hit from Embree's answer: `(geomID, instID[0], primID)` and `(tfar, u, v)`. Top-level
+/// geometry IDs are instance indices (see `build`): an instanced hit names its instance in
+/// `instID[0]`, a flattened one in `geomID`; IDs from `csg_base` on are CSG objects (user
+/// geometries), reported with `CSG_BIT`.
+fn hit_of(
+    (geom, inst, prim): (u32, u32, u32),
+    (t, u, v): (f32, f32, f32),
+    csg_base: u32,
+) -> Option<Hit> {
+    if geom == INVALID_ID {
+        return None;
+    }
+    let inst = if inst != INVALID_ID {
+        inst
+    } else if geom >= csg_base {
+        (geom - csg_base) | CSG_BIT
+    } else {
+        geom
+    };
+    Some(Hit {
+        t,
+        u,
+        v,
+        inst,
+        prim,
+    })
 }
 
 thread_local! {
@@ -676,6 +732,20 @@ impl EmbreeAccel {
     pub fn intersect_batch(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
         assert_eq!(rays.len(), out.len(), "one output slot per ray");
         self.query(rays, || {
+            for (k, (rays, out)) in rays.chunks(8).zip(out.chunks_mut(8)).enumerate() {
+                let (mut p, valid) = RayHit8::new(rays, 8 * k as u32);
+                self.intersect8(&mut p, &valid);
+                for (lane, slot) in out.iter_mut().enumerate() {
+                    *slot = p.hit(lane, self.csg_base);
+                }
+            }
+        });
+    }
+
+    /// `intersect_batch` one ray at a time.
+    pub fn intersect_each(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
+        assert_eq!(rays.len(), out.len(), "one output slot per ray");
+        self.query(rays, || {
             for (i, (ray, slot)) in rays.iter().zip(out.iter_mut()).enumerate() {
                 // The ray id indexes `rays`, where the alpha filter finds the world ray.
                 let mut rh = RayHit::new(ray, i as u32);
@@ -704,6 +774,19 @@ impl EmbreeAccel {
             sys::rtcIntersect1(
                 self.top,
                 (rh as *mut RayHit).cast::<sys::RTCRayHit>(),
+                ptr::null_mut(),
+            )
+        };
+    }
+
+    fn intersect8(&self, p: &mut RayHit8, valid: &Valid8) {
+        // SAFETY: the top scene is committed; the packet is the padded 672-byte RTCRayHit8 the 4.4
+        // library writes, and the valid mask is 32-byte aligned; NULL arguments are allowed.
+        unsafe {
+            sys::rtcIntersect8(
+                valid.0.as_ptr(),
+                self.top,
+                (p as *mut RayHit8).cast::<sys::RTCRayHit8>(),
                 ptr::null_mut(),
             )
         };
@@ -744,6 +827,10 @@ impl Accel for EmbreeAccel {
         let mut rh = RayHit::new(ray, 0);
         self.query(std::slice::from_ref(ray), || self.intersect1(&mut rh));
         rh.hit(self.csg_base)
+    }
+
+    fn intersect_many(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
+        self.intersect_batch(rays, out);
     }
 
     fn occluded(&self, ray: &Ray) -> bool {
@@ -792,6 +879,42 @@ mod tests {
             before,
             bytes(&pair[1]),
             "a hit must not write into the next element"
+        );
+    }
+
+    /// The same for packets: the 4.4 library writes eight `instPrimID` lanes past the bindings'
+    /// 640-byte `RTCRayHit8`, into the wrapper's padding.
+    #[test]
+    fn padded_packet_keeps_neighbour_intact() {
+        let accel = build(scene_of(
+            vec![quad()],
+            vec![Instance::new(0, Mat4::IDENTITY)],
+            vec![Material::default()],
+        ));
+        let rays: Vec<Ray> = (0..8)
+            .map(|k| down(Vec3::new(0.1 * k as f32 + 0.05, 0.2, 1.0)))
+            .collect();
+        let mut pair = [RayHit8::new(&rays, 0), RayHit8::new(&rays, 8)];
+        pair[1].0._pad = [0xDEAD_BEEF; 8];
+        let bytes = |r: &RayHit8| {
+            // SAFETY: RayHit8 is plain old data with no padding holes (672 bytes of f32/u32).
+            unsafe { std::slice::from_raw_parts((r as *const RayHit8).cast::<u8>(), 672) }.to_vec()
+        };
+        let before = bytes(&pair[1].0);
+        let [(first, valid), _] = &mut pair;
+        accel.intersect8(first, valid);
+        for (lane, ray) in rays.iter().enumerate() {
+            assert!(first.hit(lane, u32::MAX).is_some(), "lane {lane} hits");
+            assert_eq!(
+                first.hit(lane, u32::MAX),
+                accel.intersect(ray),
+                "lane {lane}"
+            );
+        }
+        assert_eq!(
+            before,
+            bytes(&pair[1].0),
+            "a hit must not write into the next packet"
         );
     }
 

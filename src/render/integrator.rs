@@ -8,7 +8,7 @@ use super::light::{LightContext, LightSampler, LightSet};
 use super::offset::offset_ray_origin;
 use super::surface::SurfaceInteraction;
 use crate::accel::Accel;
-use crate::geometry::Ray;
+use crate::geometry::{Hit, Ray};
 use crate::sample::mis::power_heuristic;
 use crate::sample::{Dim, Sampler};
 use crate::scene::features::Features;
@@ -80,12 +80,24 @@ impl<'a> Integrator<'a> {
         }
     }
 
-    pub fn li(&self, camera_ray: Ray, sampler: &mut impl Sampler) -> PathResult {
+    /// The camera ray as the path traces it: with its seed for stochastic transparency (what
+    /// `li` does first; for tracing camera rays ahead, together).
+    pub fn seeded(&self, camera_ray: Ray, sampler: &mut impl Sampler) -> Ray {
+        camera_ray.with_seed(self.alpha_seed(sampler, 0))
+    }
+
+    /// Radiance along `camera_ray`; `first` is its closest hit where already traced (`seeded`).
+    pub fn li(
+        &self,
+        camera_ray: Ray,
+        first: Option<Option<Hit>>,
+        sampler: &mut impl Sampler,
+    ) -> PathResult {
         let mut none = PathFeatures::default();
         if self.thin_shadows {
-            self.li_with::<true, false>(camera_ray, sampler, &mut none)
+            self.li_with::<true, false>(camera_ray, first, sampler, &mut none)
         } else {
-            self.li_with::<false, false>(camera_ray, sampler, &mut none)
+            self.li_with::<false, false>(camera_ray, first, sampler, &mut none)
         }
     }
 
@@ -94,13 +106,14 @@ impl<'a> Integrator<'a> {
     pub fn li_features(
         &self,
         camera_ray: Ray,
+        first: Option<Option<Hit>>,
         sampler: &mut impl Sampler,
         features: &mut PathFeatures,
     ) -> PathResult {
         if self.thin_shadows {
-            self.li_with::<true, true>(camera_ray, sampler, features)
+            self.li_with::<true, true>(camera_ray, first, sampler, features)
         } else {
-            self.li_with::<false, true>(camera_ray, sampler, features)
+            self.li_with::<false, true>(camera_ray, first, sampler, features)
         }
     }
 
@@ -144,17 +157,21 @@ impl<'a> Integrator<'a> {
     fn li_with<const THIN: bool, const FEATURES: bool>(
         &self,
         camera_ray: Ray,
+        mut first: Option<Option<Hit>>,
         sampler: &mut impl Sampler,
         features: &mut PathFeatures,
     ) -> PathResult {
-        let mut ray = camera_ray.with_seed(self.alpha_seed(sampler, 0));
+        let mut ray = self.seeded(camera_ray, sampler);
         let mut l = Vec3::ZERO;
         let mut alpha = 1.0;
         let mut rays = 0;
         let mut st = PathState::default();
         for bounce in 0.. {
             rays += 1;
-            let hit = self.accel.intersect(&ray);
+            let hit = match first.take() {
+                Some(hit) => hit,
+                None => self.accel.intersect(&ray),
+            };
             if st.medium != Vec3::ZERO {
                 // Beer-Lambert over the segment inside; a ray that escapes an open medium is lost.
                 let dist = hit.map_or(f32::INFINITY, |h| h.t * ray.d.length());

@@ -14,7 +14,7 @@ pub mod surface;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
-use glam::{DVec4, Vec2, Vec4};
+use glam::{DVec4, Vec2, Vec3, Vec4};
 use indicatif::ProgressBar;
 use rayon::prelude::*;
 
@@ -30,12 +30,15 @@ use crate::accel::Accel;
 use crate::film::filter::{Filter, FilterKind};
 use crate::film::shard::{PixelSum, Shard};
 use crate::film::Image;
+use crate::geometry::Ray;
 use crate::sample::{AnySampler, Dim, Sampler, SamplerKind};
 use crate::scene::features::Features;
 use crate::scene::{Camera, Scene};
 
 /// Tile edge in pixels: small enough to balance load, big enough to amortise per-tile setup.
 const TILE: usize = 16;
+/// Camera rays of one pixel traced together (Embree's packet width).
+const PACKET: usize = 8;
 
 /// How samples are spread over the pixels.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
@@ -273,41 +276,65 @@ impl Ctx<'_> {
         features: &mut FeatureAcc,
     ) -> u64 {
         let mut rays = 0u64;
-        for i in acc.n..to {
-            if self.settings.sample_shard.is_some_and(|s| !s.takes(i)) {
-                continue;
+        let mut next = acc.n;
+        while next < to {
+            // The camera rays of up to `PACKET` of the pixel's samples, traced together (they are
+            // coherent: Embree answers them as one packet); then each path goes on alone.
+            let mut takes = [(0u32, Vec2::ZERO, 0.0f32); PACKET];
+            let mut cam = [Ray::new(Vec3::ZERO, Vec3::Z); PACKET];
+            let mut n = 0;
+            while next < to && n < PACKET {
+                let i = next;
+                next += 1;
+                if self.settings.sample_shard.is_some_and(|s| !s.takes(i)) {
+                    continue;
+                }
+                sampler.start(x as u32, y as u32, i);
+                let (offset, w) = self.filter.sample(sampler.get_2d(Dim::Pixel, 0));
+                let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
+                cam[n] = self
+                    .integrator
+                    .seeded(self.cam.generate(film, sampler), sampler);
+                takes[n] = (i, offset, w);
+                n += 1;
             }
-            sampler.start(x as u32, y as u32, i);
-            let (offset, w) = self.filter.sample(sampler.get_2d(Dim::Pixel, 0));
-            let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
-            let ray = self.cam.generate(film, sampler);
-            let mut path = PathFeatures::default();
-            let r = if FEATURES {
-                self.integrator.li_features(ray, sampler, &mut path)
-            } else {
-                self.integrator.li(ray, sampler)
-            };
-            rays += r.rays as u64;
-            // A non-finite sample would poison the pixel: count it as black.
-            let finite = r.radiance.is_finite();
-            let v = if finite {
-                r.radiance.as_dvec4() * w as f64
-            } else {
-                DVec4::ZERO
-            };
-            if FEATURES {
-                let l = if finite {
-                    r.radiance.as_dvec4()
+            let mut first = [None; PACKET];
+            self.integrator
+                .accel
+                .intersect_many(&cam[..n], &mut first[..n]);
+            for ((&(i, offset, w), &ray), &hit) in takes.iter().zip(&cam).zip(&first).take(n) {
+                // The sampler is stateless per dimension: restarted, it draws the path's
+                // dimensions as if the camera ray had just been made.
+                sampler.start(x as u32, y as u32, i);
+                let mut path = PathFeatures::default();
+                let r = if FEATURES {
+                    self.integrator
+                        .li_features(ray, Some(hit), sampler, &mut path)
+                } else {
+                    self.integrator.li(ray, Some(hit), sampler)
+                };
+                rays += r.rays as u64;
+                // A non-finite sample would poison the pixel: count it as black.
+                let finite = r.radiance.is_finite();
+                let v = if finite {
+                    r.radiance.as_dvec4() * w as f64
                 } else {
                     DVec4::ZERO
                 };
-                features.add(&path, l, w as f64, offset, &self.axis);
-            }
-            acc.sum += v;
-            acc.w += w as f64;
-            if i % 2 == 0 {
-                acc.half += v;
-                acc.half_w += w as f64;
+                if FEATURES {
+                    let l = if finite {
+                        r.radiance.as_dvec4()
+                    } else {
+                        DVec4::ZERO
+                    };
+                    features.add(&path, l, w as f64, offset, &self.axis);
+                }
+                acc.sum += v;
+                acc.w += w as f64;
+                if i % 2 == 0 {
+                    acc.half += v;
+                    acc.half_w += w as f64;
+                }
             }
         }
         acc.n = acc.n.max(to);
@@ -412,7 +439,7 @@ impl Ctx<'_> {
         );
         let r = self
             .integrator
-            .li(self.cam.generate(film, sampler), sampler);
+            .li(self.cam.generate(film, sampler), None, sampler);
         st.rays += r.rays as u64;
         let v = if r.radiance.is_finite() {
             r.radiance
