@@ -68,7 +68,7 @@ pub fn run(input: &Input, width: usize, height: usize, max_rays: usize) -> Resul
     let reference = accel::build(scene.clone(), Backend::Bvh)?;
     let sets = generate_rays(&scene, reference.as_ref(), width, height);
     let mut rows = Vec::new();
-    for kind in RayKind::ALL {
+    for kind in RayKind::SINGLE {
         let all = sets.get(kind);
         let step = all.len().div_ceil(max_rays.max(1)).max(1);
         let rays: Vec<Ray> = all.iter().step_by(step).copied().collect();

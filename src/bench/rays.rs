@@ -29,10 +29,21 @@ pub enum RayKind {
     Shadow,
     /// Cosine-distributed bounces from the first-hit points (incoherent).
     Diffuse,
+    /// The primary rays eight neighbours at a time (`Accel::intersect_many`: Embree's 8-wide
+    /// packets, as renders trace each pixel's camera rays; one by one elsewhere). Its agreement
+    /// column is the single rays' (the Embree tests hold packets to the single answers bit for bit).
+    Packets,
 }
 
 impl RayKind {
-    pub const ALL: [RayKind; 3] = [RayKind::Primary, RayKind::Shadow, RayKind::Diffuse];
+    /// The kinds traced one ray at a time.
+    pub const SINGLE: [RayKind; 3] = [RayKind::Primary, RayKind::Shadow, RayKind::Diffuse];
+    pub const ALL: [RayKind; 4] = [
+        RayKind::Primary,
+        RayKind::Shadow,
+        RayKind::Diffuse,
+        RayKind::Packets,
+    ];
 }
 
 impl fmt::Display for RayKind {
@@ -41,6 +52,7 @@ impl fmt::Display for RayKind {
             RayKind::Primary => "primary",
             RayKind::Shadow => "shadow",
             RayKind::Diffuse => "diffuse",
+            RayKind::Packets => "packets",
         })
     }
 }
@@ -94,7 +106,7 @@ pub struct RaySets {
 impl RaySets {
     pub fn get(&self, kind: RayKind) -> &[Ray] {
         match kind {
-            RayKind::Primary => &self.primary,
+            RayKind::Primary | RayKind::Packets => &self.primary,
             RayKind::Shadow => &self.shadow,
             RayKind::Diffuse => &self.diffuse,
         }
@@ -159,18 +171,22 @@ pub fn generate_rays(scene: &Scene, accel: &dyn Accel, width: usize, height: usi
 }
 
 /// Traces every ray (closest hit, or any hit for shadow rays) and returns a count so the work is kept.
-fn trace(accel: &dyn Accel, rays: &[Ray], any_hit: bool) -> usize {
+fn trace(accel: &dyn Accel, rays: &[Ray], kind: RayKind) -> usize {
     rays.par_chunks(1024)
-        .map(|c| {
-            c.iter()
-                .filter(|r| {
-                    if any_hit {
-                        accel.occluded(r)
-                    } else {
-                        accel.intersect(r).is_some()
-                    }
-                })
-                .count()
+        .map(|c| match kind {
+            RayKind::Shadow => c.iter().filter(|r| accel.occluded(r)).count(),
+            RayKind::Packets => {
+                let mut hits = [None; 8];
+                c.chunks(8)
+                    .map(|p| {
+                        accel.intersect_many(p, &mut hits[..p.len()]);
+                        hits[..p.len()].iter().filter(|h| h.is_some()).count()
+                    })
+                    .sum()
+            }
+            RayKind::Primary | RayKind::Diffuse => {
+                c.iter().filter(|r| accel.intersect(r).is_some()).count()
+            }
         })
         .sum()
 }
@@ -221,7 +237,7 @@ pub fn run(input: &Input, config: &RaysConfig) -> Result<Report> {
                 let mut best = f64::INFINITY;
                 for _ in 0..config.repeat {
                     let t = Instant::now();
-                    std::hint::black_box(pool.install(|| trace(accel.as_ref(), rays, any_hit)));
+                    std::hint::black_box(pool.install(|| trace(accel.as_ref(), rays, kind)));
                     best = best.min(t.elapsed().as_secs_f64());
                 }
                 mrays.push((threads, rays.len() as f64 / best.max(1e-9) / 1e6));
