@@ -328,3 +328,37 @@ fn lambertian_plane_under_an_emissive_quad_of_512_triangles_by_power_and_by_bvh(
         );
     }
 }
+
+/// Direct light only (depth 1): the path's last ray only looks for emitters, and where they are a
+/// few sampled triangles (up to 16) the integrator tests those and asks the accelerator only
+/// whether the nearest is blocked. Both ways (8 triangles, and 18: the closest-hit query) must meet
+/// the closed form, with MIS between the light and BSDF samples.
+#[test]
+fn last_ray_finds_few_emitters_as_the_closest_hit_does() {
+    let (rho, l, h) = (0.7f32, 4.0f32, 0.5f32);
+    let rect = [-0.6f32, 0.5, -0.4, 0.7];
+    let [x0, x1, z0, z1] = rect.map(|v| v as f64);
+    let f = |x: f64, z: f64| corner_form_factor(x, z, h as f64);
+    let expected = rho * l * (f(x1, z1) - f(x0, z1) - f(x1, z0) + f(x0, z0)) as f32;
+    for n in [2, 3] {
+        let scene = with_emissive_quad(lambert_plane(rho, Vec::new()), rect, h, l, n);
+        for backend in Backend::all_available() {
+            let settings = RenderSettings {
+                width: 3,
+                height: 3,
+                spp: 4096,
+                max_depth: 1,
+                seed: 9,
+                ..Default::default()
+            };
+            let c = common::render_with(&scene, &oblique_camera(), backend, &settings).get(1, 1);
+            for c in c.truncate().to_array() {
+                assert!(
+                    (c - expected).abs() <= 0.01 * expected,
+                    "{} triangles ({backend}): radiance {c}, expected {expected}",
+                    2 * n * n
+                );
+            }
+        }
+    }
+}

@@ -170,6 +170,26 @@ impl<'a> Integrator<'a> {
             rays += 1;
             let hit = match first.take() {
                 Some(hit) => hit,
+                None if !FEATURES
+                    && bounce > 0
+                    && bounce >= self.max_depth
+                    && st.medium == Vec3::ZERO
+                    && self.lights.few_emitters() =>
+                {
+                    // The last ray only looks for emitters: where a few emissive triangles are
+                    // all of them, test those and ask the accelerator only whether the nearest
+                    // is blocked (most last rays meet none and trace nothing).
+                    let Some(h) = self.lights.nearest_emitter(&ray) else {
+                        break;
+                    };
+                    let before = Ray::segment(ray.o, ray.d, h.t * (1.0 - SHADOW_SHORTEN))
+                        .with_seed(ray.seed)
+                        .with_time(ray.time);
+                    if self.accel.occluded(&before) {
+                        break;
+                    }
+                    Some(h)
+                }
                 None => self.accel.intersect(&ray),
             };
             if st.medium != Vec3::ZERO {

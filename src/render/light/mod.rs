@@ -29,7 +29,8 @@ use glam::{Vec2, Vec3};
 pub use alias::AliasTable;
 pub use distribution::{Distribution1D, Distribution2D};
 
-use crate::geometry::Ray;
+use crate::geometry::triangle::RayShear;
+use crate::geometry::{Hit, Ray};
 use crate::sample::mis::power_heuristic;
 use crate::scene::{DirectionalLight, Light, PointLight, Scene, SpotLight};
 use area::AreaLight;
@@ -186,7 +187,13 @@ pub struct LightSet {
     /// Entries that rays can hit (spheres, disks, rectangles) and entries that escaping rays see.
     hittable: Vec<u32>,
     environments: Vec<u32>,
+    /// The only emitters are a few emissive triangles, all of them sampled (no analytic area
+    /// lights, environments, unlit surfaces, moving emitters or emissive CSG surfaces).
+    few_emitters: bool,
 }
+
+/// Most emissive triangles that `nearest_emitter` tests one by one.
+const FEW_EMITTERS: usize = 16;
 
 impl LightSet {
     /// The scene's lights, chosen by power.
@@ -214,6 +221,14 @@ impl LightSet {
             weights.push(w);
         }
         let mut first_triangle = vec![u32::MAX; scene.instances.len()];
+        let glows = |m: u32| {
+            let m = &scene.materials[m as usize];
+            m.unlit || m.is_emissive()
+        };
+        let all_sampled = !scene.instances.iter().any(|inst| {
+            let m = scene.meshes[inst.mesh as usize].material;
+            scene.materials[m as usize].unlit || (inst.motion.is_some() && glows(m))
+        }) && !scene.csg.iter().any(|c| c.materials().any(glows));
         for (i, inst) in scene.instances.iter().enumerate() {
             let mesh = &scene.meshes[inst.mesh as usize];
             let mat = &scene.materials[mesh.material as usize];
@@ -239,13 +254,41 @@ impl LightSet {
         } else {
             Chooser::Power(AliasTable::new(&weights))
         };
+        let few_emitters = all_sampled
+            && hittable.is_empty()
+            && environments.is_empty()
+            && entries.len() <= FEW_EMITTERS;
         Self {
             chooser,
             entries,
             first_triangle,
             hittable,
             environments,
+            few_emitters,
         }
+    }
+
+    /// Whether the scene's only emitters are a few sampled emissive triangles, so that a ray that
+    /// only looks for emitters can test them instead of asking for the closest hit
+    /// (`nearest_emitter`).
+    pub fn few_emitters(&self) -> bool {
+        self.few_emitters
+    }
+
+    /// The nearest emissive triangle `ray` meets (each tested, watertight, on its world-space
+    /// vertices); meaningful where `few_emitters`.
+    pub fn nearest_emitter(&self, ray: &Ray) -> Option<Hit> {
+        let sh = RayShear::new(ray.d);
+        let mut best: Option<Hit> = None;
+        for e in &self.entries {
+            if let Entry::Triangle(t) = e {
+                let t_max = best.map_or(ray.t_max, |b| b.t);
+                if let Some(h) = t.hit(ray.o, &sh, ray.t_min, t_max) {
+                    best = Some(h);
+                }
+            }
+        }
+        best
     }
 
     pub fn is_empty(&self) -> bool {

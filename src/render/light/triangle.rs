@@ -10,6 +10,8 @@ use glam::{Vec2, Vec3};
 use super::area::{area_pdf, area_sample, SPHERICAL_SOLID_ANGLES};
 use super::bounds::LightBounds;
 use super::{LightContext, LightSample};
+use crate::geometry::triangle::{self, RayShear};
+use crate::geometry::Hit;
 use crate::render::bsdf::luminance;
 use crate::render::surface::emission;
 use crate::sample::warp::{
@@ -103,6 +105,19 @@ impl Triangle {
             self.n
         };
         area_sample(p, q, n, self.area, li, choice)
+    }
+
+    /// Where the ray from `o` (shear `sh`) meets the triangle, either face, before `t_max`: the
+    /// accelerators' watertight test on the same world-space vertices.
+    pub fn hit(&self, o: Vec3, sh: &RayShear, t_min: f32, t_max: f32) -> Option<Hit> {
+        let [a, b, c] = self.v;
+        triangle::intersect(o, sh, a, b, c, t_min, t_max).map(|h| Hit {
+            t: h.t,
+            u: h.u,
+            v: h.v,
+            inst: self.inst,
+            prim: self.prim,
+        })
     }
 
     /// The bounds of the triangle's emission, of power `phi`, for the light BVH.
