@@ -728,33 +728,6 @@ impl EmbreeAccel {
         }
     }
 
-    /// Closest hits of many rays (one `rtcIntersect1` each); `out[i]` is the answer for `rays[i]`.
-    pub fn intersect_batch(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
-        assert_eq!(rays.len(), out.len(), "one output slot per ray");
-        self.query(rays, || {
-            for (k, (rays, out)) in rays.chunks(8).zip(out.chunks_mut(8)).enumerate() {
-                let (mut p, valid) = RayHit8::new(rays, 8 * k as u32);
-                self.intersect8(&mut p, &valid);
-                for (lane, slot) in out.iter_mut().enumerate() {
-                    *slot = p.hit(lane, self.csg_base);
-                }
-            }
-        });
-    }
-
-    /// `intersect_batch` one ray at a time.
-    pub fn intersect_each(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
-        assert_eq!(rays.len(), out.len(), "one output slot per ray");
-        self.query(rays, || {
-            for (i, (ray, slot)) in rays.iter().zip(out.iter_mut()).enumerate() {
-                // The ray id indexes `rays`, where the alpha filter finds the world ray.
-                let mut rh = RayHit::new(ray, i as u32);
-                self.intersect1(&mut rh);
-                *slot = rh.hit(self.csg_base);
-            }
-        });
-    }
-
     /// Any-hit answers for many rays (one `rtcOccluded1` each); `out[i]` is the answer for `rays[i]`.
     pub fn occluded_batch(&self, rays: &[Ray], out: &mut [bool]) {
         assert_eq!(rays.len(), out.len(), "one output slot per ray");
@@ -829,8 +802,19 @@ impl Accel for EmbreeAccel {
         rh.hit(self.csg_base)
     }
 
+    /// Eight rays to a packet (`rtcIntersect8`); the ray id indexes `rays`, where the alpha
+    /// filter finds the world ray.
     fn intersect_many(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
-        self.intersect_batch(rays, out);
+        assert_eq!(rays.len(), out.len(), "one output slot per ray");
+        self.query(rays, || {
+            for (k, (rays, out)) in rays.chunks(8).zip(out.chunks_mut(8)).enumerate() {
+                let (mut p, valid) = RayHit8::new(rays, 8 * k as u32);
+                self.intersect8(&mut p, &valid);
+                for (lane, slot) in out.iter_mut().enumerate() {
+                    *slot = p.hit(lane, self.csg_base);
+                }
+            }
+        });
     }
 
     fn occluded(&self, ray: &Ray) -> bool {
@@ -858,6 +842,12 @@ mod tests {
         EmbreeAccel::build(s).expect("embree builds")
     }
 
+    /// The bytes of a plain-old-data value (f32/u32 fields, no padding holes of its own).
+    fn bytes<T>(x: &T) -> Vec<u8> {
+        // SAFETY: the callers' wrappers are f32/u32 arrays and fields throughout, every byte initialised.
+        unsafe { std::slice::from_raw_parts((x as *const T).cast::<u8>(), size_of::<T>()) }.to_vec()
+    }
+
     #[test]
     fn padded_rayhit_keeps_neighbour_intact() {
         let accel = build(scene_of(
@@ -868,10 +858,6 @@ mod tests {
         let ray = down(Vec3::new(0.7, 0.2, 1.0));
         let mut pair = [RayHit::new(&ray, 0), RayHit::new(&ray, 1)];
         pair[1]._pad = [0xDEAD_BEEF; 4];
-        let bytes = |r: &RayHit| {
-            // SAFETY: RayHit is plain old data with no padding holes of its own (96 bytes of f32/u32).
-            unsafe { std::slice::from_raw_parts((r as *const RayHit).cast::<u8>(), 96) }.to_vec()
-        };
         let before = bytes(&pair[1]);
         accel.intersect1(&mut pair[0]);
         assert!(pair[0].hit(u32::MAX).is_some(), "the triangle is hit");
@@ -896,10 +882,6 @@ mod tests {
             .collect();
         let mut pair = [RayHit8::new(&rays, 0), RayHit8::new(&rays, 8)];
         pair[1].0._pad = [0xDEAD_BEEF; 8];
-        let bytes = |r: &RayHit8| {
-            // SAFETY: RayHit8 is plain old data with no padding holes (672 bytes of f32/u32).
-            unsafe { std::slice::from_raw_parts((r as *const RayHit8).cast::<u8>(), 672) }.to_vec()
-        };
         let before = bytes(&pair[1].0);
         let [(first, valid), _] = &mut pair;
         accel.intersect8(first, valid);
@@ -947,7 +929,7 @@ mod tests {
                 .collect();
             let mut hits = vec![None; rays.len()];
             let mut occ = vec![false; rays.len()];
-            accel.intersect_batch(&rays, &mut hits);
+            accel.intersect_many(&rays, &mut hits);
             accel.occluded_batch(&rays, &mut occ);
             for (i, ray) in rays.iter().enumerate() {
                 assert_eq!(hits[i], accel.intersect(ray), "ray {i}");
@@ -1014,7 +996,7 @@ mod tests {
         // Any hit implies occlusion and vice versa.
         assert!(serial.iter().all(|(h, o)| h.is_some() == *o));
         let mut batch = vec![None; rays.len()];
-        accel.intersect_batch(&rays, &mut batch);
+        accel.intersect_many(&rays, &mut batch);
         assert_eq!(
             bits(&batch.iter().map(|h| (*h, h.is_some())).collect::<Vec<_>>()),
             bits(&serial)

@@ -80,13 +80,13 @@ impl<'a> Integrator<'a> {
         }
     }
 
-    /// The camera ray as the path traces it: with its seed for stochastic transparency (what
-    /// `li` does first; for tracing camera rays ahead, together).
+    /// The camera ray as the path traces it: with its seed for stochastic transparency (`li`
+    /// takes rays made so, which may be traced ahead, together).
     pub fn seeded(&self, camera_ray: Ray, sampler: &mut impl Sampler) -> Ray {
         camera_ray.with_seed(self.alpha_seed(sampler, 0))
     }
 
-    /// Radiance along `camera_ray`; `first` is its closest hit where already traced (`seeded`).
+    /// Radiance along `camera_ray` (from `seeded`); `first` is its closest hit where already traced.
     pub fn li(
         &self,
         camera_ray: Ray,
@@ -101,8 +101,9 @@ impl<'a> Integrator<'a> {
         }
     }
 
-    /// `li`, also noting what the path saw for the feature images (the same radiance, from the
-    /// same samples: the features only watch).
+    /// `li`, also noting what the path saw for the feature images (the same samples: the features
+    /// only watch; but the last ray always takes the closest-hit query, since the features may
+    /// need its hit, where `li` may test the emitters instead: radiance equal to the last bits).
     pub fn li_features(
         &self,
         camera_ray: Ray,
@@ -161,7 +162,7 @@ impl<'a> Integrator<'a> {
         sampler: &mut impl Sampler,
         features: &mut PathFeatures,
     ) -> PathResult {
-        let mut ray = self.seeded(camera_ray, sampler);
+        let mut ray = camera_ray;
         let mut l = Vec3::ZERO;
         let mut alpha = 1.0;
         let mut rays = 0;
@@ -241,13 +242,7 @@ impl<'a> Integrator<'a> {
                 seed: self.alpha_seed(sampler, bounce + 1),
                 time: ray.time,
             };
-            let nee = self.next_event::<THIN>(
-                &si,
-                &leave,
-                (bounce, u_choice, u_light),
-                st.beta,
-                &mut rays,
-            );
+            let nee = self.next_event::<THIN>(&si, &leave, (u_choice, u_light), st.beta, &mut rays);
             if let Some(c) = nee {
                 l += c;
             }
@@ -283,7 +278,7 @@ impl<'a> Integrator<'a> {
         &self,
         si: &SurfaceInteraction,
         leave: &Leave,
-        (_bounce, u_choice, u_light): (u32, f32, Vec2),
+        (u_choice, u_light): (f32, Vec2),
         beta: Vec3,
         rays: &mut u32,
     ) -> Option<Vec3> {

@@ -437,9 +437,10 @@ impl Ctx<'_> {
             x as f32 + cx as f32 / st.g as f32,
             y as f32 + cy as f32 / st.g as f32,
         );
+        let ray = self.cam.generate(film, sampler);
         let r = self
             .integrator
-            .li(self.cam.generate(film, sampler), None, sampler);
+            .li(self.integrator.seeded(ray, sampler), None, sampler);
         st.rays += r.rays as u64;
         let v = if r.radiance.is_finite() {
             r.radiance

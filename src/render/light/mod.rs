@@ -187,8 +187,9 @@ pub struct LightSet {
     /// Entries that rays can hit (spheres, disks, rectangles) and entries that escaping rays see.
     hittable: Vec<u32>,
     environments: Vec<u32>,
-    /// The only emitters are a few emissive triangles, all of them sampled (no analytic area
-    /// lights, environments, unlit surfaces, moving emitters or emissive CSG surfaces).
+    /// The only emitters are a few emissive triangles, all of them sampled and opaque (no analytic
+    /// area lights, environments, unlit surfaces, moving or alpha-tested emitters or emissive CSG
+    /// surfaces).
     few_emitters: bool,
 }
 
@@ -225,9 +226,11 @@ impl LightSet {
             let m = &scene.materials[m as usize];
             m.unlit || m.is_emissive()
         };
+        // Alpha-tested emitters too: rays pass their cut-outs, `nearest_emitter` would not.
         let all_sampled = !scene.instances.iter().any(|inst| {
             let m = scene.meshes[inst.mesh as usize].material;
-            scene.materials[m as usize].unlit || (inst.motion.is_some() && glows(m))
+            scene.materials[m as usize].unlit
+                || (glows(m) && (inst.motion.is_some() || scene.mesh_needs_alpha_test(inst.mesh)))
         }) && !scene.csg.iter().any(|c| c.materials().any(glows));
         for (i, inst) in scene.instances.iter().enumerate() {
             let mesh = &scene.meshes[inst.mesh as usize];
