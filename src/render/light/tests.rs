@@ -629,3 +629,50 @@ fn a_near_rect_light_sampled_by_solid_angle_varies_less_than_by_area() {
         "variance {var_solid} by solid angle, {var_area} by area"
     );
 }
+
+/// The last ray's emitter test (`nearest_emitter`) stands in for the closest-hit query only where
+/// the sampled triangles are every emitter, and opaque: rays pass an alpha-tested emitter's
+/// cut-outs, the emitter test would not. Where it applies it finds the nearest of them.
+#[test]
+fn few_emitters_only_where_the_triangles_are_every_emitter() {
+    let mesh = crate::scene::Mesh {
+        positions: vec![
+            Vec3::new(-1.0, 1.0, -1.0),
+            Vec3::new(1.0, 1.0, -1.0),
+            Vec3::new(0.0, 1.0, 1.0),
+        ],
+        normals: vec![-Vec3::Y; 3],
+        indices: vec![[0, 1, 2]],
+        ..Default::default()
+    };
+    let mut scene = crate::scene::generate::single_mesh_scene(mesh);
+    scene.materials[0].emissive = Vec3::splat(2.0);
+    let set = LightSet::new(&scene);
+    assert!(set.few_emitters());
+    let up = Ray::new(Vec3::ZERO, Vec3::Y);
+    let hit = set
+        .nearest_emitter(&up)
+        .expect("the ray meets the triangle");
+    assert!((hit.t - 1.0).abs() < 1e-6 && hit.inst == 0 && hit.prim == 0);
+    assert!(set
+        .nearest_emitter(&Ray::new(Vec3::ZERO, -Vec3::Y))
+        .is_none());
+
+    let mut masked = scene.clone();
+    masked.materials[0].alpha_mode = crate::scene::AlphaMode::Mask(0.5);
+    masked.materials[0].base_color.w = 0.25;
+    assert!(masked.mesh_needs_alpha_test(0));
+    assert!(!LightSet::new(&masked).few_emitters());
+
+    let mut unlit = scene.clone();
+    unlit.materials.push(crate::scene::Material {
+        unlit: true,
+        ..Default::default()
+    });
+    unlit.meshes.push(unlit.meshes[0].clone());
+    unlit.meshes[1].material = 1;
+    unlit
+        .instances
+        .push(crate::scene::Instance::new(1, glam::Mat4::IDENTITY));
+    assert!(!LightSet::new(&unlit).few_emitters());
+}
