@@ -146,21 +146,19 @@ impl LightBvh {
         let mut at = 0;
         loop {
             let node = &self.wide[at];
-            let shares = shares(node.importance(p, n))?;
-            // The lane whose interval of [0, 1) holds u; past the last (rounding), the last taken.
-            let (mut lane, mut below, mut sum) = (0, 0.0, 0.0);
-            for (l, &s) in shares.iter().enumerate() {
-                if s > 0.0 {
-                    (lane, below) = (l, sum);
-                    if u < sum + s {
-                        break;
-                    }
-                }
-                sum += s;
-            }
-            let share = shares[lane];
-            u = ((u - below) / share).min(ONE_MINUS_EPS);
-            pmf *= share;
+            let w = Weights::of(node.importance(p, n))?;
+            // The first lane whose running sum passes u's share of the total (never an empty one:
+            // its running sum is its predecessor's); past the last (rounding), the last nonempty.
+            let target = u as f64 * w.sum;
+            let passed = w.cum.iter().filter(|&&c| c <= target).count();
+            let lane = if passed < LANES {
+                passed
+            } else {
+                w.imp.iter().rposition(|&x| x > 0.0).unwrap_or(LANES - 1)
+            };
+            let below = w.cum[lane] - w.imp[lane];
+            u = (((target - below) / w.imp[lane]) as f32).min(ONE_MINUS_EPS);
+            pmf *= w.share(lane);
             if node.leaf[lane] {
                 return Some((node.index[lane] as usize, pmf));
             }
@@ -179,11 +177,11 @@ impl LightBvh {
         let mut at = 0;
         loop {
             let node = &self.wide[at];
-            let Some(shares) = shares(node.importance(p, n)) else {
+            let Some(w) = Weights::of(node.importance(p, n)) else {
                 return 0.0;
             };
             let lane = (trail & (LANES as u64 - 1)) as usize;
-            pmf *= shares[lane];
+            pmf *= w.share(lane);
             if node.leaf[lane] {
                 return pmf;
             }
@@ -193,14 +191,35 @@ impl LightBvh {
     }
 }
 
-/// Each lane's share of the importances, `None` when none can light the point (the ratios in
-/// f64, an infinite bound taken as the largest finite one, so that huge bounds near a point light
-/// still divide).
-#[inline(always)]
-fn shares(importance: [f32; LANES]) -> Option<[f32; LANES]> {
-    let imp = importance.map(|x| x.min(f32::MAX) as f64);
-    let sum: f64 = imp.iter().sum();
-    (sum > 0.0).then(|| imp.map(|x| (x / sum) as f32))
+/// A wide node's lane importances as `choose` and `pmf` weigh them: in f64, an infinite bound
+/// taken as the largest finite one (so that huge bounds near a point light still divide), with
+/// their running sums; one division per level, for the lane taken, rather than one per lane.
+struct Weights {
+    imp: [f64; LANES],
+    /// `cum[l]`: the sum of lanes `0..=l`, added in lane order.
+    cum: [f64; LANES],
+    sum: f64,
+}
+
+impl Weights {
+    /// `None` when no lane can light the point.
+    #[inline(always)]
+    fn of(importance: [f32; LANES]) -> Option<Self> {
+        let imp = importance.map(|x| x.min(f32::MAX) as f64);
+        let mut cum = [0.0; LANES];
+        let mut sum = 0.0;
+        for (c, &x) in cum.iter_mut().zip(&imp) {
+            sum += x;
+            *c = sum;
+        }
+        (sum > 0.0).then_some(Self { imp, cum, sum })
+    }
+
+    /// Lane `l`'s probability, the same in `choose` and `pmf`.
+    #[inline(always)]
+    fn share(&self, l: usize) -> f32 {
+        (self.imp[l] / self.sum) as f32
+    }
 }
 
 /// Makes the wide node for binary node `at` (interior, or the root leaf): its lanes are `at`'s
