@@ -113,7 +113,12 @@ impl EnvMap {
     /// Radiance arriving from world direction `d` (nearest pixel: piecewise constant, which is what
     /// the importance sampling's pdf assumes).
     pub fn lookup(&self, d: Vec3) -> Vec3 {
-        let (x, y) = self.pixel_of(self.direction_to_uv(d));
+        self.at_uv(self.direction_to_uv(d))
+    }
+
+    /// The radiance of the pixel holding lat-long coordinates `uv` (for callers that have them).
+    pub fn at_uv(&self, uv: Vec2) -> Vec3 {
+        let (x, y) = self.pixel_of(uv);
         self.pixels[y * self.width + x]
     }
 }
