@@ -14,6 +14,15 @@ use crate::sample::{Dim, Sampler};
 use crate::scene::features::Features;
 use crate::scene::Scene;
 
+/// The camera ray's closest hit, where it was traced ahead of the path (eight to a packet).
+#[derive(Clone, Copy, Debug)]
+pub enum FirstHit {
+    /// The path traces the camera ray itself.
+    Untraced,
+    /// Traced: the hit, or none where the ray left the scene.
+    Traced(Option<Hit>),
+}
+
 /// Bounce from which Russian roulette may end paths.
 const ROULETTE_START: u32 = 3;
 
@@ -86,13 +95,8 @@ impl<'a> Integrator<'a> {
         camera_ray.with_seed(self.alpha_seed(sampler, 0))
     }
 
-    /// Radiance along `camera_ray` (from `seeded`); `first` is its closest hit where already traced.
-    pub fn li(
-        &self,
-        camera_ray: Ray,
-        first: Option<Option<Hit>>,
-        sampler: &mut impl Sampler,
-    ) -> PathResult {
+    /// Radiance along `camera_ray` (from `seeded`), whose closest hit `first` may have found.
+    pub fn li(&self, camera_ray: Ray, first: FirstHit, sampler: &mut impl Sampler) -> PathResult {
         let mut none = PathFeatures::default();
         if self.thin_shadows {
             self.li_with::<true, false>(camera_ray, first, sampler, &mut none)
@@ -107,7 +111,7 @@ impl<'a> Integrator<'a> {
     pub fn li_features(
         &self,
         camera_ray: Ray,
-        first: Option<Option<Hit>>,
+        first: FirstHit,
         sampler: &mut impl Sampler,
         features: &mut PathFeatures,
     ) -> PathResult {
@@ -158,7 +162,7 @@ impl<'a> Integrator<'a> {
     fn li_with<const THIN: bool, const FEATURES: bool>(
         &self,
         camera_ray: Ray,
-        mut first: Option<Option<Hit>>,
+        first: FirstHit,
         sampler: &mut impl Sampler,
         features: &mut PathFeatures,
     ) -> PathResult {
@@ -169,7 +173,11 @@ impl<'a> Integrator<'a> {
         let mut st = PathState::default();
         for bounce in 0.. {
             rays += 1;
-            let hit = match first.take() {
+            let traced = match (bounce, first) {
+                (0, FirstHit::Traced(hit)) => Some(hit),
+                _ => None,
+            };
+            let hit = match traced {
                 Some(hit) => hit,
                 None if !FEATURES
                     && bounce > 0

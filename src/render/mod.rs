@@ -20,7 +20,7 @@ use rayon::prelude::*;
 
 pub use crate::film::aov::FeatureImages;
 pub use camera::RayCamera;
-pub use integrator::Integrator;
+pub use integrator::{FirstHit, Integrator};
 pub use light::LightSampler;
 
 use feature_film::{DepthAxis, FeatureAcc};
@@ -309,9 +309,9 @@ impl Ctx<'_> {
                 let mut path = PathFeatures::default();
                 let r = if FEATURES {
                     self.integrator
-                        .li_features(ray, Some(hit), sampler, &mut path)
+                        .li_features(ray, FirstHit::Traced(hit), sampler, &mut path)
                 } else {
-                    self.integrator.li(ray, Some(hit), sampler)
+                    self.integrator.li(ray, FirstHit::Traced(hit), sampler)
                 };
                 rays += r.rays as u64;
                 // A non-finite sample would poison the pixel: count it as black.
@@ -438,9 +438,11 @@ impl Ctx<'_> {
             y as f32 + cy as f32 / st.g as f32,
         );
         let ray = self.cam.generate(film, sampler);
-        let r = self
-            .integrator
-            .li(self.integrator.seeded(ray, sampler), None, sampler);
+        let r = self.integrator.li(
+            self.integrator.seeded(ray, sampler),
+            FirstHit::Untraced,
+            sampler,
+        );
         st.rays += r.rays as u64;
         let v = if r.radiance.is_finite() {
             r.radiance
