@@ -379,7 +379,7 @@ mod tests {
     use std::f32::consts::{FRAC_1_SQRT_2, FRAC_PI_2, FRAC_PI_4};
 
     use super::*;
-    use crate::scene::texture::{Texture, TextureFilter, Wrap};
+    use crate::scene::texture::Texture;
 
     /// KHR_materials_anisotropy's convention: the direction lies in tangent space, turned
     /// counter-clockwise by anisotropyRotation from the tangent towards the bitangent; the
@@ -389,16 +389,12 @@ mod tests {
     fn anisotropy_direction_follows_the_spec_convention() {
         let mut scene = Scene::default();
         // RG (128, 255): the direction (0.004, 1), about the bitangent; B 128: strength x 0.5.
-        scene.textures.push(Texture {
-            name: "direction".into(),
-            width: 1,
-            height: 1,
-            pixels: vec![[128, 255, 128, 255]],
-            srgb: false,
-            wrap_s: Wrap::Repeat,
-            wrap_t: Wrap::Repeat,
-            filter: TextureFilter::Linear,
-        });
+        scene.textures.push(Texture::repeating(
+            "direction".into(),
+            (1, 1),
+            vec![[128, 255, 128, 255]],
+            false,
+        ));
         let uv = VertexAttrs::from_uv(Vec2::splat(0.5));
         let (t, b) = (Vec3::X, Vec3::Y);
         let dir = |rotation: f32, texture: Option<TexRef>| {
@@ -447,16 +443,9 @@ mod tests {
     fn diffuse_transmission_reads_its_texture_channels() {
         let mut scene = Scene::default();
         for (pixel, srgb) in [([10, 20, 30, 128], false), ([255, 128, 0, 7], true)] {
-            scene.textures.push(Texture {
-                name: "dt".into(),
-                width: 1,
-                height: 1,
-                pixels: vec![pixel],
-                srgb,
-                wrap_s: Wrap::Repeat,
-                wrap_t: Wrap::Repeat,
-                filter: TextureFilter::Linear,
-            });
+            scene
+                .textures
+                .push(Texture::repeating("dt".into(), (1, 1), vec![pixel], srgb));
         }
         let uv = VertexAttrs::from_uv(Vec2::splat(0.5));
         let mut layers = MaterialLayers {

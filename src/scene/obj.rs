@@ -23,9 +23,7 @@ use std::path::{Path, PathBuf};
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
 use super::decode::Rgba8;
-use super::{
-    AlphaMode, Instance, LoadError, Material, Mesh, Scene, TexRef, Texture, TextureFilter, Wrap,
-};
+use super::{AlphaMode, Instance, LoadError, Material, Mesh, Scene, TexRef, Texture};
 
 /// Reads a file an OBJ names (an MTL library, a texture), given its full path.
 pub type Files<'a> = dyn Fn(&Path) -> std::io::Result<Vec<u8>> + 'a;
@@ -419,16 +417,12 @@ fn metal_rough_texture(
         .flat_map(|y| (0..width).map(move |x| (x, y)))
         .map(|(x, y)| [0, grey(&rough, x, y), grey(&metal, x, y), 255])
         .collect();
-    scene.textures.push(Texture {
-        name: format!("{} metallic-roughness", m.name),
-        width,
-        height,
+    scene.textures.push(Texture::repeating(
+        format!("{} metallic-roughness", m.name),
+        (width, height),
         pixels,
-        srgb: false,
-        wrap_s: Wrap::Repeat,
-        wrap_t: Wrap::Repeat,
-        filter: TextureFilter::Linear,
-    });
+        false,
+    ));
     Some((scene.textures.len() - 1) as u32)
 }
 
@@ -493,19 +487,16 @@ fn texture(
         return *t;
     }
     let out = decode(&file, &bytes, scene, label).map(|img| {
-        scene.textures.push(Texture {
-            name: file
-                .file_name()
-                .map(|f| f.to_string_lossy().into_owned())
-                .unwrap_or_default(),
-            width: img.width,
-            height: img.height,
-            pixels: img.pixels,
+        let name = file
+            .file_name()
+            .map(|f| f.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        scene.textures.push(Texture::repeating(
+            name,
+            (img.width, img.height),
+            img.pixels,
             srgb,
-            wrap_s: Wrap::Repeat,
-            wrap_t: Wrap::Repeat,
-            filter: TextureFilter::Linear,
-        });
+        ));
         (scene.textures.len() - 1) as u32
     });
     textures.insert((file, srgb), out);
@@ -515,7 +506,7 @@ fn texture(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::Scene;
+    use crate::scene::{Scene, Wrap};
 
     #[test]
     fn no_mtl_gives_grey_dielectric_and_computed_normals() {

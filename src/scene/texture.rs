@@ -69,6 +69,26 @@ fn srgb_table() -> &'static [f32; 256] {
 }
 
 impl Texture {
+    /// A texture with glTF's default sampler (repeating both ways, filtered linearly), as OBJ's
+    /// textures and the ones glint derives have.
+    pub fn repeating(
+        name: String,
+        (width, height): (usize, usize),
+        pixels: Vec<[u8; 4]>,
+        srgb: bool,
+    ) -> Self {
+        Self {
+            name,
+            width,
+            height,
+            pixels,
+            srgb,
+            wrap_s: Wrap::Repeat,
+            wrap_t: Wrap::Repeat,
+            filter: TextureFilter::Linear,
+        }
+    }
+
     fn texel(&self, x: usize, y: usize) -> Vec4 {
         let p = self.pixels[y * self.width + x];
         let a = p[3] as f32 / 255.0;
