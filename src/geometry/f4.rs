@@ -35,6 +35,11 @@ mod imp {
             // SAFETY: SSE is part of the x86_64 baseline.
             Self(unsafe { _mm_set1_ps(x) })
         }
+        /// The SSE register (for `F8`, which joins two).
+        #[inline(always)]
+        pub(crate) fn raw(self) -> __m128 {
+            self.0
+        }
         #[inline(always)]
         pub fn load(a: &[f32; 4]) -> Self {
             // SAFETY: SSE baseline; `a` is four readable f32s.
@@ -75,6 +80,11 @@ mod imp {
     }
 
     impl M4 {
+        /// The SSE register (for `M8`, which joins two).
+        #[inline(always)]
+        pub(crate) fn raw(self) -> __m128 {
+            self.0
+        }
         lanewise! {
             or -> M4 = _mm_or_ps;
             and -> M4 = _mm_and_ps;

@@ -9,7 +9,10 @@ use std::f32::consts::PI;
 
 use glam::Vec3;
 
-use crate::geometry::f4::{F4, M4};
+use crate::geometry::f4::F4;
+use crate::geometry::lanes::Lanes;
+#[cfg(target_arch = "x86_64")]
+use crate::geometry::lanes::{F8, M8};
 use crate::geometry::Aabb;
 
 /// A cone of directions about unit `w`: every direction within angle acos(`cos_theta`) of it.
@@ -212,19 +215,22 @@ impl PackedBounds {
     }
 }
 
-/// Four `PackedBounds` lane by lane, for a wide node's children: `importance` evaluates all four
-/// at once with the same formula (an empty lane has no power and a zero importance everywhere).
+/// `PackedBounds` lane by lane, for a wide node's children: `importance` evaluates all lanes at
+/// once with the same formula (an empty lane has no power and a zero importance everywhere).
 #[derive(Clone, Copy)]
-pub(super) struct Bounds4 {
-    centre: [F4; 3],
-    radius: F4,
-    w: [F4; 3],
-    phi: F4,
-    cos_o: F4,
-    sin_o: F4,
-    cos_e: F4,
-    two_sided: M4,
+pub(super) struct BoundsLanes<L: Lanes> {
+    centre: [L; 3],
+    radius: L,
+    w: [L; 3],
+    phi: L,
+    cos_o: L,
+    sin_o: L,
+    cos_e: L,
+    two_sided: L::Mask,
 }
+
+/// Four children's bounds, as wide nodes store them.
+pub(super) type Bounds4 = BoundsLanes<F4>;
 
 impl Bounds4 {
     /// Up to four bounds; lanes past the last are empty.
@@ -255,48 +261,66 @@ impl Bounds4 {
             two_sided: F4::load(&two).gt(F4::splat(0.5)),
         }
     }
+}
 
-    /// `PackedBounds::importance` of the four lanes, step for step (the same IEEE operations, so
-    /// a lane equals the scalar bound but for the order of a dot product's sums).
+/// Eight children's bounds in AVX registers, from the two halves a wide node stores.
+#[cfg(target_arch = "x86_64")]
+impl BoundsLanes<F8> {
     #[inline(always)]
-    pub fn importance(&self, p: Vec3, n: Vec3) -> [f32; 4] {
-        let (zero, one) = (F4::splat(0.0), F4::splat(1.0));
-        let safe_sqrt = |x: F4| x.max(zero).sqrt();
-        let cos_sub = |sin_a: F4, cos_a: F4, sin_b: F4, cos_b: F4| {
-            cos_a.gt(cos_b).select(one, cos_a * cos_b + sin_a * sin_b)
+    pub fn halves(lo: &Bounds4, hi: &Bounds4) -> Self {
+        let j = |a: F4, b: F4| F8::halves(a, b);
+        Self {
+            centre: std::array::from_fn(|k| j(lo.centre[k], hi.centre[k])),
+            radius: j(lo.radius, hi.radius),
+            w: std::array::from_fn(|k| j(lo.w[k], hi.w[k])),
+            phi: j(lo.phi, hi.phi),
+            cos_o: j(lo.cos_o, hi.cos_o),
+            sin_o: j(lo.sin_o, hi.sin_o),
+            cos_e: j(lo.cos_e, hi.cos_e),
+            two_sided: M8::halves(lo.two_sided, hi.two_sided),
+        }
+    }
+}
+
+impl<L: Lanes> BoundsLanes<L> {
+    /// `PackedBounds::importance` of the lanes, step for step (the same IEEE operations, so a lane
+    /// equals the scalar bound but for the order of a dot product's sums, at either width).
+    #[inline(always)]
+    pub fn importance(&self, p: Vec3, n: Vec3) -> L {
+        let (zero, one) = (L::splat(0.0), L::splat(1.0));
+        let safe_sqrt = |x: L| x.max(zero).sqrt();
+        let cos_sub = |sin_a: L, cos_a: L, sin_b: L, cos_b: L| {
+            L::select(cos_a.gt(cos_b), one, cos_a * cos_b + sin_a * sin_b)
         };
-        let sin_sub = |sin_a: F4, cos_a: F4, sin_b: F4, cos_b: F4| {
-            cos_a.gt(cos_b).select(zero, sin_a * cos_b - cos_a * sin_b)
+        let sin_sub = |sin_a: L, cos_a: L, sin_b: L, cos_b: L| {
+            L::select(cos_a.gt(cos_b), zero, sin_a * cos_b - cos_a * sin_b)
         };
         let to = [
-            F4::splat(p.x) - self.centre[0],
-            F4::splat(p.y) - self.centre[1],
-            F4::splat(p.z) - self.centre[2],
+            L::splat(p.x) - self.centre[0],
+            L::splat(p.y) - self.centre[1],
+            L::splat(p.z) - self.centre[2],
         ];
         let d2 = to[0] * to[0] + to[1] * to[1] + to[2] * to[2];
-        let inv_d = d2.gt(zero).select(one / d2.sqrt(), zero);
+        let inv_d = L::select(d2.gt(zero), one / d2.sqrt(), zero);
         let wi = [to[0] * inv_d, to[1] * inv_d, to[2] * inv_d];
         let cos_w = self.w[0] * wi[0] + self.w[1] * wi[1] + self.w[2] * wi[2];
-        let cos_w = self.two_sided.select(cos_w.abs(), cos_w);
+        let cos_w = L::select(self.two_sided, cos_w.abs(), cos_w);
         let sin_w = safe_sqrt(one - cos_w * cos_w);
         let inside = d2.lt(self.radius * self.radius);
-        let sin_b = inside.select(zero, (self.radius * inv_d).min(one));
-        let cos_b = inside.select(F4::splat(-1.0), safe_sqrt(one - sin_b * sin_b));
+        let sin_b = L::select(inside, zero, (self.radius * inv_d).min(one));
+        let cos_b = L::select(inside, L::splat(-1.0), safe_sqrt(one - sin_b * sin_b));
         let cos_x = cos_sub(sin_w, cos_w, self.sin_o, self.cos_o);
         let sin_x = sin_sub(sin_w, cos_w, self.sin_o, self.cos_o);
         let cos_p = cos_sub(sin_x, cos_x, sin_b, cos_b);
         let mut importance = self.phi * cos_p / d2.max(self.radius);
         if n != Vec3::ZERO {
             let cos_i =
-                (wi[0] * F4::splat(n.x) + wi[1] * F4::splat(n.y) + wi[2] * F4::splat(n.z)).abs();
+                (wi[0] * L::splat(n.x) + wi[1] * L::splat(n.y) + wi[2] * L::splat(n.z)).abs();
             let sin_i = safe_sqrt(one - cos_i * cos_i);
             importance = importance * cos_sub(sin_i, cos_i, sin_b, cos_b);
         }
         // `max` keeps 0 where the bound is NaN; `gt` is false there too.
-        cos_p
-            .gt(self.cos_e)
-            .select(importance.max(zero), zero)
-            .to_array()
+        L::select(cos_p.gt(self.cos_e), importance.max(zero), zero)
     }
 }
 
@@ -439,7 +463,7 @@ mod tests {
     }
 
     #[test]
-    fn four_wide_importance_is_the_scalar_one_lane_by_lane() {
+    fn wide_importance_is_the_scalar_one_lane_by_lane() {
         let mut worst = 0.0f32;
         for k in 0..3000u64 {
             let lanes: Vec<PackedBounds> = (0..(1 + k % 4))
@@ -460,7 +484,26 @@ mod tests {
             } else {
                 direction(31 * k)
             };
-            let wide = Bounds4::new(&lanes).importance(p, n);
+            let four = Bounds4::new(&lanes);
+            let wide = four.importance(p, n).to_array();
+            #[cfg(target_arch = "x86_64")]
+            if std::arch::is_x86_feature_detected!("avx") {
+                // Eight lanes (these and the same reversed, as a wide node's two halves) give the
+                // same bits as the two four-lane evaluations.
+                #[target_feature(enable = "avx")]
+                fn eight(lo: &Bounds4, hi: &Bounds4, p: Vec3, n: Vec3) -> [f32; 8] {
+                    BoundsLanes::halves(lo, hi).importance(p, n).to_array()
+                }
+                let reversed: Vec<PackedBounds> = lanes.iter().rev().copied().collect();
+                let other = Bounds4::new(&reversed);
+                // SAFETY: the CPU has AVX (checked above).
+                let both = unsafe { eight(&four, &other, p, n) };
+                let halves = [wide, other.importance(p, n).to_array()].concat();
+                assert_eq!(
+                    both.map(f32::to_bits)[..],
+                    halves.iter().map(|x| x.to_bits()).collect::<Vec<_>>()[..]
+                );
+            }
             for (l, b) in lanes.iter().enumerate() {
                 let scalar = b.importance(p, n);
                 let err = (wide[l] - scalar).abs() / scalar.abs().max(1e-6);
