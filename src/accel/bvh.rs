@@ -13,6 +13,9 @@ use rayon::prelude::*;
 use super::flat::{take_lanes, TriId};
 use super::layered::{Layered, Triangles};
 use crate::geometry::f4::F4;
+use crate::geometry::lanes::Lanes;
+#[cfg(target_arch = "x86_64")]
+use crate::geometry::lanes::F8;
 use crate::geometry::triangle::{self, RayShear, Tri4};
 use crate::geometry::{Aabb, Hit, Ray, SLAB_WIDEN};
 use crate::scene::Scene;
@@ -170,9 +173,9 @@ impl Bvh {
             };
         }
         if any {
-            self.walk::<true, SseSlabs>(scene, ray, base)
+            self.walk::<true, F4>(scene, ray, base)
         } else {
-            self.walk::<false, SseSlabs>(scene, ray, base)
+            self.walk::<false, F4>(scene, ray, base)
         }
     }
 
@@ -181,7 +184,7 @@ impl Bvh {
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx")]
     unsafe fn walk_avx<const ANY: bool>(&self, scene: &Scene, ray: &Ray, base: u32) -> Option<Hit> {
-        self.walk::<ANY, AvxSlabs>(scene, ray, base)
+        self.walk::<ANY, F8>(scene, ray, base)
     }
 
     /// Asks for the cache lines of child `child` (of `count` triangles) when it is an inner node
@@ -209,10 +212,10 @@ impl Bvh {
     /// The walk proper. The nearest child hit goes on without a trip through the stack; the others
     /// are pushed farthest first (in lane order for `ANY`).
     #[inline(always)]
-    fn walk<const ANY: bool, S: Slabs>(&self, scene: &Scene, ray: &Ray, base: u32) -> Option<Hit> {
+    fn walk<const ANY: bool, L: Lanes>(&self, scene: &Scene, ray: &Ray, base: u32) -> Option<Hit> {
         let any = ANY;
         let sh = RayShear::new(ray.d);
-        let slabs = S::new(ray);
+        let slabs = Slabs::<L>::new(ray);
         let mut t_max = ray.t_max;
         let mut best: Option<Hit> = None;
         // Entries: (child, count, entry distance); inner nodes have count 0.
@@ -300,132 +303,65 @@ impl Bvh {
     }
 }
 
-/// The ray/box test of a node's children, with its per-ray constants: for each child, the distance
-/// at which the ray enters its box, and a bit if it does within `(t_min, t_max)`.
+/// The ray/box test of a node's children, with its per-ray constants, in `L`-wide groups of the
+/// node's lanes (four-wide twice, or eight-wide once where the walk is compiled for AVX): for each
+/// child, the distance at which the ray enters its box, and a bit if it does within
+/// `(t_min, t_max)`. Both widths give the same bits.
 ///
 /// Ize 2013: the far slab distance is widened by 1 + 2 gamma(3) so that rounding never culls a box
 /// that the ray touches. Scaling the smallest far distance is the same as scaling each (the rounded
 /// product is monotonic in its operand). Minima and maxima are selects (minps/maxps) that keep the
 /// running bound when a distance is NaN (0 * inf on a slab face).
-trait Slabs {
-    fn new(ray: &Ray) -> Self;
-    fn test(&self, node: &NodeW, t_max: f32) -> (u32, [f32; W]);
+struct Slabs<L: Lanes> {
+    o: [L; 3],
+    inv: [L; 3],
+    t_min: L,
+    /// Per axis, the bound rows entered first and last (`NodeW::b`: lo x y z, hi x y z).
+    near: [usize; 3],
+    far: [usize; 3],
 }
 
 const FAR_SCALE: f32 = SLAB_WIDEN;
 
-/// Per axis, the bound rows entered first and last (`NodeW::b`: lo x y z, hi x y z).
-fn near_far(inv: [f32; 3]) -> ([usize; 3], [usize; 3]) {
-    (
-        std::array::from_fn(|a| a + 3 * (inv[a] < 0.0) as usize),
-        std::array::from_fn(|a| a + 3 * (inv[a] >= 0.0) as usize),
-    )
-}
-
-/// Four lanes at a time.
-struct SseSlabs {
-    o: [F4; 3],
-    inv: [F4; 3],
-    t_min: F4,
-    near: [usize; 3],
-    far: [usize; 3],
-}
-
-impl Slabs for SseSlabs {
+impl<L: Lanes> Slabs<L> {
     #[inline(always)]
     fn new(ray: &Ray) -> Self {
         let inv = ray.d.recip().to_array();
-        let (near, far) = near_far(inv);
         Self {
-            o: ray.o.to_array().map(F4::splat),
-            inv: inv.map(F4::splat),
-            t_min: F4::splat(ray.t_min),
-            near,
-            far,
+            o: ray.o.to_array().map(L::splat),
+            inv: inv.map(L::splat),
+            t_min: L::splat(ray.t_min),
+            near: std::array::from_fn(|a| a + 3 * (inv[a] < 0.0) as usize),
+            far: std::array::from_fn(|a| a + 3 * (inv[a] >= 0.0) as usize),
         }
     }
 
     #[inline(always)]
     fn test(&self, node: &NodeW, t_max: f32) -> (u32, [f32; W]) {
+        const { assert!(W.is_multiple_of(L::N)) };
         let (near, far) = (&self.near, &self.far);
         let mut t0 = [0.0f32; W];
         let mut mask = 0;
-        for q in 0..W / 4 {
-            let slab = |row: usize, axis: usize| {
-                let lanes: &[f32; 4] = node.b[row][4 * q..4 * q + 4].try_into().unwrap();
-                (F4::load(lanes) - self.o[axis]) * self.inv[axis]
-            };
-            let tn = slab(near[2], 2).max(slab(near[1], 1).max(slab(near[0], 0).max(self.t_min)));
-            let tf = slab(far[2], 2)
-                .min(slab(far[1], 1).min(slab(far[0], 0).min(F4::splat(f32::INFINITY))));
-            let tf = (tf * F4::splat(FAR_SCALE)).min(F4::splat(t_max));
-            mask |= tn.le(tf).bits() << (4 * q);
-            t0[4 * q..4 * q + 4].copy_from_slice(&tn.to_array());
+        for q in 0..W / L::N {
+            // No closures here: one that LLVM leaves out of line is not compiled for AVX, and
+            // the AVX instructions inside become calls (six times slower).
+            let tn = self.slab(node, near[0], 0, q).max(self.t_min);
+            let tn = self.slab(node, near[1], 1, q).max(tn);
+            let tn = self.slab(node, near[2], 2, q).max(tn);
+            let tf = self.slab(node, far[0], 0, q).min(L::splat(f32::INFINITY));
+            let tf = self.slab(node, far[1], 1, q).min(tf);
+            let tf = self.slab(node, far[2], 2, q).min(tf);
+            let tf = (tf * L::splat(FAR_SCALE)).min(L::splat(t_max));
+            mask |= L::bits(tn.le(tf)) << (q * L::N);
+            tn.store(&mut t0[q * L::N..]);
         }
         (mask, t0)
     }
-}
 
-/// Eight lanes at once (only called from AVX code: `Bvh::walk_avx`).
-#[cfg(target_arch = "x86_64")]
-struct AvxSlabs {
-    o: [std::arch::x86_64::__m256; 3],
-    inv: [std::arch::x86_64::__m256; 3],
-    t_min: std::arch::x86_64::__m256,
-    near: [usize; 3],
-    far: [usize; 3],
-}
-
-#[cfg(target_arch = "x86_64")]
-impl Slabs for AvxSlabs {
+    /// The distances to the planes of bound row `row` (along `axis`) of lane group `q`.
     #[inline(always)]
-    fn new(ray: &Ray) -> Self {
-        use std::arch::x86_64::*;
-        let inv = ray.d.recip().to_array();
-        let (near, far) = near_far(inv);
-        // SAFETY: only reached from `walk_avx`, which runs where the CPU has AVX.
-        unsafe {
-            Self {
-                o: ray.o.to_array().map(|x| _mm256_set1_ps(x)),
-                inv: inv.map(|x| _mm256_set1_ps(x)),
-                t_min: _mm256_set1_ps(ray.t_min),
-                near,
-                far,
-            }
-        }
-    }
-
-    #[inline(always)]
-    fn test(&self, node: &NodeW, t_max: f32) -> (u32, [f32; W]) {
-        use std::arch::x86_64::*;
-        const { assert!(W == 8) };
-        let (near, far) = (&self.near, &self.far);
-        // SAFETY: only reached from `walk_avx`, which runs where the CPU has AVX; rows are W = 8
-        // floats.
-        unsafe {
-            macro_rules! slab {
-                ($row:expr, $axis:expr) => {
-                    _mm256_mul_ps(
-                        _mm256_sub_ps(_mm256_loadu_ps(node.b[$row].as_ptr()), self.o[$axis]),
-                        self.inv[$axis],
-                    )
-                };
-            }
-            let tn = _mm256_max_ps(slab!(near[0], 0), self.t_min);
-            let tn = _mm256_max_ps(slab!(near[1], 1), tn);
-            let tn = _mm256_max_ps(slab!(near[2], 2), tn);
-            let tf = _mm256_min_ps(slab!(far[0], 0), _mm256_set1_ps(f32::INFINITY));
-            let tf = _mm256_min_ps(slab!(far[1], 1), tf);
-            let tf = _mm256_min_ps(slab!(far[2], 2), tf);
-            let tf = _mm256_min_ps(
-                _mm256_mul_ps(tf, _mm256_set1_ps(FAR_SCALE)),
-                _mm256_set1_ps(t_max),
-            );
-            let mask = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(tn, tf)) as u32;
-            let mut t0 = [0.0f32; W];
-            _mm256_storeu_ps(t0.as_mut_ptr(), tn);
-            (mask, t0)
-        }
+    fn slab(&self, node: &NodeW, row: usize, axis: usize, q: usize) -> L {
+        (L::load(&node.b[row][q * L::N..]) - self.o[axis]) * self.inv[axis]
     }
 }
 

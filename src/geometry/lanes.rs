@@ -1,7 +1,7 @@
-//! The lane arithmetic that SIMD code is written in once, for four lanes (`F4`: SSE, or arrays off
-//! x86_64) or eight (`F8`: AVX, x86_64 only, for code reached from a function compiled for AVX
-//! after a runtime check). Every operation is the IEEE one lane by lane, so both widths give the
-//! same bits in each lane.
+//! The lane arithmetic that SIMD code is written in once (the light BVH's bounds, the BVH's slab
+//! test), for four lanes (`F4`: SSE, or arrays off x86_64) or eight (`F8`: AVX, x86_64 only, for
+//! code reached from a function compiled for AVX after a runtime check). Every operation is the
+//! IEEE one lane by lane, so both widths give the same bits in each lane.
 
 use std::ops::{Add, Div, Mul, Sub};
 
@@ -13,7 +13,13 @@ pub trait Lanes:
 {
     /// A lane mask (true or false per lane).
     type Mask: Copy;
+    /// The number of lanes.
+    const N: usize;
     fn splat(x: f32) -> Self;
+    /// The first `N` values of `a` (which holds at least `N`).
+    fn load(a: &[f32]) -> Self;
+    /// The lanes into the first `N` values of `out` (which holds at least `N`).
+    fn store(self, out: &mut [f32]);
     fn sqrt(self) -> Self;
     fn abs(self) -> Self;
     /// `self < o ? self : o` per lane (keeps `o` where `self` is NaN).
@@ -21,16 +27,28 @@ pub trait Lanes:
     /// `self > o ? self : o` per lane (keeps `o` where `self` is NaN).
     fn max(self, o: Self) -> Self;
     fn lt(self, o: Self) -> Self::Mask;
+    fn le(self, o: Self) -> Self::Mask;
     fn gt(self, o: Self) -> Self::Mask;
+    /// Bit `l` set where lane `l` of `m` is true.
+    fn bits(m: Self::Mask) -> u32;
     /// `a` where `m` is true, `b` elsewhere.
     fn select(m: Self::Mask, a: Self, b: Self) -> Self;
 }
 
 impl Lanes for F4 {
     type Mask = M4;
+    const N: usize = 4;
     #[inline(always)]
     fn splat(x: f32) -> Self {
         F4::splat(x)
+    }
+    #[inline(always)]
+    fn load(a: &[f32]) -> Self {
+        F4::load(a[..4].try_into().expect("four values"))
+    }
+    #[inline(always)]
+    fn store(self, out: &mut [f32]) {
+        out[..4].copy_from_slice(&self.to_array());
     }
     #[inline(always)]
     fn sqrt(self) -> Self {
@@ -53,8 +71,16 @@ impl Lanes for F4 {
         F4::lt(self, o)
     }
     #[inline(always)]
+    fn le(self, o: Self) -> M4 {
+        F4::le(self, o)
+    }
+    #[inline(always)]
     fn gt(self, o: Self) -> M4 {
         F4::gt(self, o)
+    }
+    #[inline(always)]
+    fn bits(m: M4) -> u32 {
+        m.bits()
     }
     #[inline(always)]
     fn select(m: M4, a: Self, b: Self) -> Self {
@@ -125,9 +151,20 @@ mod avx {
 
     impl Lanes for F8 {
         type Mask = M8;
+        const N: usize = 8;
         #[inline(always)]
         fn splat(x: f32) -> Self {
             Self(unsafe { _mm256_set1_ps(x) })
+        }
+        #[inline(always)]
+        fn load(a: &[f32]) -> Self {
+            let a: &[f32; 8] = a[..8].try_into().expect("eight values");
+            Self(unsafe { _mm256_loadu_ps(a.as_ptr()) })
+        }
+        #[inline(always)]
+        fn store(self, out: &mut [f32]) {
+            let out: &mut [f32; 8] = (&mut out[..8]).try_into().expect("eight values");
+            unsafe { _mm256_storeu_ps(out.as_mut_ptr(), self.0) };
         }
         #[inline(always)]
         fn sqrt(self) -> Self {
@@ -151,8 +188,16 @@ mod avx {
             M8(unsafe { _mm256_cmp_ps::<_CMP_LT_OQ>(self.0, o.0) })
         }
         #[inline(always)]
+        fn le(self, o: Self) -> M8 {
+            M8(unsafe { _mm256_cmp_ps::<_CMP_LE_OQ>(self.0, o.0) })
+        }
+        #[inline(always)]
         fn gt(self, o: Self) -> M8 {
             M8(unsafe { _mm256_cmp_ps::<_CMP_GT_OQ>(self.0, o.0) })
+        }
+        #[inline(always)]
+        fn bits(m: M8) -> u32 {
+            unsafe { _mm256_movemask_ps(m.0) as u32 }
         }
         #[inline(always)]
         fn select(m: M8, a: Self, b: Self) -> Self {

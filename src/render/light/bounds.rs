@@ -287,14 +287,29 @@ impl<L: Lanes> BoundsLanes<L> {
     /// equals the scalar bound but for the order of a dot product's sums, at either width).
     #[inline(always)]
     pub fn importance(&self, p: Vec3, n: Vec3) -> L {
+        // Helpers are functions, not closures: a closure that LLVM leaves out of line is not
+        // compiled for AVX, and the AVX instructions inside become calls.
+        #[inline(always)]
+        fn safe_sqrt<L: Lanes>(x: L) -> L {
+            x.max(L::splat(0.0)).sqrt()
+        }
+        #[inline(always)]
+        fn cos_sub<L: Lanes>(sin_a: L, cos_a: L, sin_b: L, cos_b: L) -> L {
+            L::select(
+                cos_a.gt(cos_b),
+                L::splat(1.0),
+                cos_a * cos_b + sin_a * sin_b,
+            )
+        }
+        #[inline(always)]
+        fn sin_sub<L: Lanes>(sin_a: L, cos_a: L, sin_b: L, cos_b: L) -> L {
+            L::select(
+                cos_a.gt(cos_b),
+                L::splat(0.0),
+                sin_a * cos_b - cos_a * sin_b,
+            )
+        }
         let (zero, one) = (L::splat(0.0), L::splat(1.0));
-        let safe_sqrt = |x: L| x.max(zero).sqrt();
-        let cos_sub = |sin_a: L, cos_a: L, sin_b: L, cos_b: L| {
-            L::select(cos_a.gt(cos_b), one, cos_a * cos_b + sin_a * sin_b)
-        };
-        let sin_sub = |sin_a: L, cos_a: L, sin_b: L, cos_b: L| {
-            L::select(cos_a.gt(cos_b), zero, sin_a * cos_b - cos_a * sin_b)
-        };
         let to = [
             L::splat(p.x) - self.centre[0],
             L::splat(p.y) - self.centre[1],
