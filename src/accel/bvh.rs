@@ -192,21 +192,9 @@ impl Bvh {
     /// nodes: 2-4% more rays a second). Leaves are not prefetched: their packets are another array.
     #[inline(always)]
     fn prefetch(&self, child: u32, count: u32) {
-        #[cfg(target_arch = "x86_64")]
         if count == 0 {
-            let p = self.nodes[child as usize..].as_ptr().cast::<i8>();
-            for line in (0..std::mem::size_of::<NodeW>()).step_by(64) {
-                // SAFETY: `p` points at node `child` (the slice index checked it), so `p + line` for
-                // `line` within the node's size is in bounds; a prefetch reads nothing into the program.
-                unsafe {
-                    std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(
-                        p.add(line),
-                    )
-                };
-            }
+            crate::geometry::prefetch(&self.nodes[child as usize]);
         }
-        #[cfg(not(target_arch = "x86_64"))]
-        let _ = (child, count);
     }
 
     /// The walk proper. The nearest child hit goes on without a trip through the stack; the others

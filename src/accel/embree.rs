@@ -842,6 +842,15 @@ mod tests {
         EmbreeAccel::build(s).expect("embree builds")
     }
 
+    /// Embree over one quad, the padded-struct tests' scene.
+    fn one_quad() -> EmbreeAccel {
+        build(scene_of(
+            vec![quad()],
+            vec![Instance::new(0, Mat4::IDENTITY)],
+            vec![Material::default()],
+        ))
+    }
+
     /// The bytes of a plain-old-data value (f32/u32 fields, no padding holes of its own).
     fn bytes<T>(x: &T) -> Vec<u8> {
         // SAFETY: the callers' wrappers are f32/u32 arrays and fields throughout, every byte initialised.
@@ -850,11 +859,7 @@ mod tests {
 
     #[test]
     fn padded_rayhit_keeps_neighbour_intact() {
-        let accel = build(scene_of(
-            vec![quad()],
-            vec![Instance::new(0, Mat4::IDENTITY)],
-            vec![Material::default()],
-        ));
+        let accel = one_quad();
         let ray = down(Vec3::new(0.7, 0.2, 1.0));
         let mut pair = [RayHit::new(&ray, 0), RayHit::new(&ray, 1)];
         pair[1]._pad = [0xDEAD_BEEF; 4];
@@ -872,11 +877,7 @@ mod tests {
     /// 640-byte `RTCRayHit8`, into the wrapper's padding.
     #[test]
     fn padded_packet_keeps_neighbour_intact() {
-        let accel = build(scene_of(
-            vec![quad()],
-            vec![Instance::new(0, Mat4::IDENTITY)],
-            vec![Material::default()],
-        ));
+        let accel = one_quad();
         let rays: Vec<Ray> = (0..8)
             .map(|k| down(Vec3::new(0.1 * k as f32 + 0.05, 0.2, 1.0)))
             .collect();

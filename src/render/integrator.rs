@@ -173,13 +173,9 @@ impl<'a> Integrator<'a> {
         let mut st = PathState::default();
         for bounce in 0.. {
             rays += 1;
-            let traced = match (bounce, first) {
-                (0, FirstHit::Traced(hit)) => Some(hit),
-                _ => None,
-            };
-            let hit = match traced {
-                Some(hit) => hit,
-                None if !FEATURES
+            let hit = match (bounce, first) {
+                (0, FirstHit::Traced(hit)) => hit,
+                _ if !FEATURES
                     && bounce > 0
                     && bounce >= self.max_depth
                     && st.medium == Vec3::ZERO
@@ -199,7 +195,7 @@ impl<'a> Integrator<'a> {
                     }
                     Some(h)
                 }
-                None => self.accel.intersect(&ray),
+                _ => self.accel.intersect(&ray),
             };
             if st.medium != Vec3::ZERO {
                 // Beer-Lambert over the segment inside; a ray that escapes an open medium is lost.

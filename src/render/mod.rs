@@ -315,18 +315,13 @@ impl Ctx<'_> {
                 };
                 rays += r.rays as u64;
                 // A non-finite sample would poison the pixel: count it as black.
-                let finite = r.radiance.is_finite();
-                let v = if finite {
-                    r.radiance.as_dvec4() * w as f64
+                let l = if r.radiance.is_finite() {
+                    r.radiance.as_dvec4()
                 } else {
                     DVec4::ZERO
                 };
+                let v = l * w as f64;
                 if FEATURES {
-                    let l = if finite {
-                        r.radiance.as_dvec4()
-                    } else {
-                        DVec4::ZERO
-                    };
                     features.add(&path, l, w as f64, offset, &self.axis);
                 }
                 acc.sum += v;

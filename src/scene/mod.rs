@@ -719,15 +719,9 @@ impl Scene {
     /// next, and on a large mesh they are rarely in the cache after the ray query).
     #[inline]
     pub fn prefetch_triangle(&self, hit: &Hit) {
-        #[cfg(target_arch = "x86_64")]
         if hit.csg().is_none() {
             if let Some(tri) = self.mesh_of(hit.inst).indices.get(hit.prim as usize) {
-                // SAFETY: a prefetch of a valid reference reads nothing into the program.
-                unsafe {
-                    std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(
-                        (tri as *const [u32; 3]).cast(),
-                    )
-                };
+                crate::geometry::prefetch(tri);
             }
         }
     }

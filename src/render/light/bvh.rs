@@ -51,16 +51,14 @@ struct WideNode {
 }
 
 impl WideNode {
-    /// The importance bounds of the lanes: with `AVX` (only in code compiled for it), one
-    /// eight-wide evaluation, else two independent four-wide ones; the same bits either way.
+    /// The importance bounds of the lanes: one eight-wide evaluation where the CPU has AVX, else
+    /// two independent four-wide ones; the same bits either way.
     #[inline(always)]
-    fn importance<const AVX: bool>(&self, p: Vec3, n: Vec3) -> [f32; LANES] {
+    fn importance(&self, p: Vec3, n: Vec3) -> [f32; LANES] {
         #[cfg(target_arch = "x86_64")]
-        if AVX {
-            const { assert!(LANES == 8) };
-            return BoundsLanes::halves(&self.bounds[0], &self.bounds[1])
-                .importance(p, n)
-                .to_array();
+        if std::arch::is_x86_feature_detected!("avx") {
+            // SAFETY: the CPU has AVX (checked just above; std caches the answer).
+            return unsafe { self.importance_avx(p, n) };
         }
         // A plain loop: through `map` or `from_fn` the evaluations were copied or not inlined.
         let mut out = [0.0; LANES];
@@ -68,6 +66,16 @@ impl WideNode {
             out[4 * q..4 * q + 4].copy_from_slice(&b.importance(p, n).to_array());
         }
         out
+    }
+
+    /// `importance` in one eight-lane evaluation.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    fn importance_avx(&self, p: Vec3, n: Vec3) -> [f32; LANES] {
+        const { assert!(LANES == 8) };
+        BoundsLanes::halves(&self.bounds[0], &self.bounds[1])
+            .importance(p, n)
+            .to_array()
     }
 }
 
@@ -91,8 +99,6 @@ pub(super) struct LightBvh {
     /// The probability of choosing among the lights at infinity rather than in the tree: their
     /// share of the total power.
     p_infinite: f32,
-    /// Whether the CPU has AVX: a node's eight bounds are then one evaluation, not two.
-    avx: bool,
 }
 
 impl LightBvh {
@@ -140,33 +146,12 @@ impl LightBvh {
             infinite,
             infinite_table: AliasTable::new(&infinite_weights),
             p_infinite,
-            #[cfg(target_arch = "x86_64")]
-            avx: std::arch::is_x86_feature_detected!("avx"),
-            #[cfg(not(target_arch = "x86_64"))]
-            avx: false,
         }
     }
 
     /// A light for the point `p` with unit normal `n` (zero: none) and `u` in [0, 1), with its
     /// probability.
     pub fn choose(&self, p: Vec3, n: Vec3, u: f32) -> Option<(usize, f32)> {
-        #[cfg(target_arch = "x86_64")]
-        if self.avx {
-            // SAFETY: `avx` is set only where the CPU has AVX.
-            return unsafe { self.choose_avx(p, n, u) };
-        }
-        self.choose_with::<false>(p, n, u)
-    }
-
-    /// `choose` compiled for AVX, with eight-wide evaluations.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    unsafe fn choose_avx(&self, p: Vec3, n: Vec3, u: f32) -> Option<(usize, f32)> {
-        self.choose_with::<true>(p, n, u)
-    }
-
-    #[inline(always)]
-    fn choose_with<const AVX: bool>(&self, p: Vec3, n: Vec3, u: f32) -> Option<(usize, f32)> {
         if u < self.p_infinite || self.wide.is_empty() {
             let u = (u / self.p_infinite).min(ONE_MINUS_EPS);
             let (k, pk) = self.infinite_table.sample(u)?;
@@ -177,7 +162,7 @@ impl LightBvh {
         let mut at = 0;
         loop {
             let node = &self.wide[at];
-            let w = Weights::of(node.importance::<AVX>(p, n))?;
+            let w = Weights::of(node.importance(p, n))?;
             // The first lane whose running sum passes u's share of the total (never an empty one:
             // its running sum is its predecessor's); past the last (rounding), the last nonempty.
             let target = u as f64 * w.sum;
@@ -199,23 +184,6 @@ impl LightBvh {
 
     /// The probability that `choose` picks light `i` for `p` and `n`.
     pub fn pmf(&self, p: Vec3, n: Vec3, i: usize) -> f32 {
-        #[cfg(target_arch = "x86_64")]
-        if self.avx {
-            // SAFETY: `avx` is set only where the CPU has AVX.
-            return unsafe { self.pmf_avx(p, n, i) };
-        }
-        self.pmf_with::<false>(p, n, i)
-    }
-
-    /// `pmf` compiled for AVX, with eight-wide evaluations.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    unsafe fn pmf_avx(&self, p: Vec3, n: Vec3, i: usize) -> f32 {
-        self.pmf_with::<true>(p, n, i)
-    }
-
-    #[inline(always)]
-    fn pmf_with<const AVX: bool>(&self, p: Vec3, n: Vec3, i: usize) -> f32 {
         let mut trail = match self.places[i] {
             Place::Tree(t) => t,
             Place::Infinite(k) => return self.p_infinite * self.infinite_table.pmf(k as usize),
@@ -225,7 +193,7 @@ impl LightBvh {
         let mut at = 0;
         loop {
             let node = &self.wide[at];
-            let Some(w) = Weights::of(node.importance::<AVX>(p, n)) else {
+            let Some(w) = Weights::of(node.importance(p, n)) else {
                 return 0.0;
             };
             let lane = (trail & (LANES as u64 - 1)) as usize;
