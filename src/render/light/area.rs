@@ -1,6 +1,8 @@
 //! What the area-sampled lights share: the trait of the analytic area lights (found by rays, not by
 //! the accelerators) and the conversion of a uniform area sample to a solid-angle pdf.
 
+use std::f32::consts::PI;
+
 use glam::{Vec2, Vec3};
 
 use super::bounds::LightBounds;
@@ -63,6 +65,71 @@ pub(super) fn area_sample(
         pdf: area_pdf(choice, d2, cos_l, area),
         is_delta: false,
     })
+}
+
+/// The light sample towards point `q`, drawn from `p` with solid-angle pdf `pdf` (the choice
+/// included); `None` where `q` is `p`.
+pub(super) fn solid_angle_sample(p: Vec3, q: Vec3, li: Vec3, pdf: f32) -> Option<LightSample> {
+    let to = q - p;
+    let dist = to.length();
+    (dist > 0.0).then(|| LightSample {
+        wi: to / dist,
+        dist,
+        li,
+        pdf,
+        is_delta: false,
+    })
+}
+
+/// `area_sample` for a two-sided planar light of unit normal `n` (either side): it emits towards
+/// `p` from whichever side `p` is on.
+pub(super) fn two_sided_area_sample(
+    p: Vec3,
+    q: Vec3,
+    n: Vec3,
+    area: f32,
+    li: Vec3,
+    choice: f32,
+) -> Option<LightSample> {
+    let n = if n.dot(q - p) > 0.0 { -n } else { n };
+    area_sample(p, q, n, area, li, choice)
+}
+
+/// The pdf of `two_sided_area_sample` for point `q` (unit normal `nq`, either side) from `p`.
+pub(super) fn two_sided_area_pdf(choice: f32, p: Vec3, q: Vec3, nq: Vec3, area: f32) -> f32 {
+    let to = q - p;
+    let d2 = to.length_squared();
+    let cos_l = nq.dot(to.normalize_or_zero()).abs();
+    if cos_l <= 0.0 || area <= 0.0 {
+        return 0.0;
+    }
+    area_pdf(choice, d2, cos_l, area)
+}
+
+/// Whether a planar light of `area`, within the sphere of squared radius `r2` about `centre`, surely
+/// looks smaller than `limit` (sr) from `p`, at height `h` over its plane, without trigonometry:
+/// from outside the sphere its cap, of solid angle 2 pi (1 - cos) <= pi r^2 / (d^2 - r^2), bounds
+/// it; and since every point of the light is at least d - r away, so does the integral of
+/// cos / dist^2 = h / dist^3 over its area, at most A h / (d - r)^3 (tighter off to the side and
+/// far away). From inside the sphere nothing is sure.
+pub(super) fn surely_smaller(
+    p: Vec3,
+    centre: Vec3,
+    r2: f32,
+    area: f32,
+    h: f32,
+    limit: f32,
+) -> bool {
+    let d2 = centre.distance_squared(p);
+    let excess = d2 - r2;
+    if excess <= 0.0 {
+        return false;
+    }
+    if PI * r2 < limit * excess {
+        return true;
+    }
+    let near = d2.sqrt() - r2.sqrt();
+    near > 0.0 && area * h < limit * near * near * near
 }
 
 /// Distance along unit `d` from `o` to the plane through `p` with unit normal `n`, when `o` is on

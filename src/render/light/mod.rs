@@ -17,6 +17,7 @@ mod disk;
 mod distribution;
 mod environment;
 mod point;
+mod quad;
 mod rect;
 mod sphere;
 mod spot;
@@ -38,6 +39,7 @@ use bounds::LightBounds;
 use bvh::LightBvh;
 use disk::Disk;
 use environment::Environment;
+use quad::Quad;
 use rect::Rect;
 use triangle::Triangle;
 
@@ -47,6 +49,7 @@ enum Entry {
     Spot(SpotLight),
     Directional(DirectionalLight),
     Triangle(Triangle),
+    Quad(Quad),
     Sphere(crate::scene::SphereLight),
     Disk(Disk),
     Rect(Rect),
@@ -85,6 +88,7 @@ impl Entry {
             Entry::Spot(l) => Some(spot::bounds(l, phi)),
             Entry::Directional(_) | Entry::Environment(_) => None,
             Entry::Triangle(t) => Some(t.bounds(phi)),
+            Entry::Quad(q) => Some(q.bounds(phi)),
             Entry::Sphere(s) => Some(s.bounds(phi)),
             Entry::Disk(d) => Some(d.bounds(phi)),
             Entry::Rect(r) => Some(r.bounds(phi)),
@@ -126,7 +130,7 @@ pub const AUTO_BVH_LIGHTS: usize = 64;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
 pub enum LightSampler {
     /// The BVH for scenes of at least `AUTO_BVH_LIGHTS` lights (emissive triangles count one
-    /// each), power below. Measured (session 8, sigma at equal spp, power -> bvh): many-emitters
+    /// each, a rectangle of two one), power below. Measured (session 8, sigma at equal spp, power -> bvh): many-emitters
     /// (1,200) 0.539 -> 0.456 at 1.17x the time per sample, 0.84x the time to a clean image;
     /// DamagedHelmet (its emissive triangles) 0.505 -> 0.482 and EmissiveStrengthTest (60)
     /// 0.186 -> 0.117 at the same time; bunny-cornell (2) equal; the demo (14) 0.953 -> 1.042.
@@ -182,8 +186,11 @@ impl Chooser {
 pub struct LightSet {
     entries: Vec<Entry>,
     chooser: Chooser,
-    /// For each instance, the index of its first triangle entry, or `u32::MAX` when not emissive.
+    /// For each instance, where its triangle 0 is in `triangle_entry`, or `u32::MAX` when not
+    /// emissive.
     first_triangle: Vec<u32>,
+    /// The entry of each emissive triangle (a quad's two triangles share one).
+    triangle_entry: Vec<u32>,
     /// Entries that rays can hit (spheres, disks, rectangles) and entries that escaping rays see.
     hittable: Vec<u32>,
     environments: Vec<u32>,
@@ -222,6 +229,7 @@ impl LightSet {
             weights.push(w);
         }
         let mut first_triangle = vec![u32::MAX; scene.instances.len()];
+        let mut triangle_entry = Vec::new();
         let glows = |m: u32| {
             let m = &scene.materials[m as usize];
             m.unlit || m.is_emissive()
@@ -240,11 +248,29 @@ impl LightSet {
             if !mat.is_emissive() || inst.motion.is_some() {
                 continue;
             }
-            first_triangle[i] = entries.len() as u32;
-            for p in 0..mesh.indices.len() as u32 {
+            first_triangle[i] = triangle_entry.len() as u32;
+            // Consecutive triangles that make a rectangle of constant emission (a quad split in
+            // two) are one light; the rest one each.
+            let count = mesh.indices.len() as u32;
+            let mut p = 0;
+            while p < count {
                 let t = Triangle::new(scene, i as u32, p);
-                weights.push(t.power(scene, mat, mesh));
-                entries.push(Entry::Triangle(t));
+                let quad = if mat.emissive_tex.is_none() && p + 1 < count {
+                    Quad::pair(&t, &Triangle::new(scene, i as u32, p + 1), mat.emissive)
+                } else {
+                    None
+                };
+                triangle_entry.push(entries.len() as u32);
+                if let Some(q) = quad {
+                    triangle_entry.push(entries.len() as u32);
+                    weights.push(q.power());
+                    entries.push(Entry::Quad(q));
+                    p += 2;
+                } else {
+                    weights.push(t.power(scene, mat, mesh));
+                    entries.push(Entry::Triangle(t));
+                    p += 1;
+                }
             }
         }
         let bvh = match sampler {
@@ -265,6 +291,7 @@ impl LightSet {
             chooser,
             entries,
             first_triangle,
+            triangle_entry,
             hittable,
             environments,
             few_emitters,
@@ -284,11 +311,14 @@ impl LightSet {
         let sh = RayShear::new(ray.d);
         let mut best: Option<Hit> = None;
         for e in &self.entries {
-            if let Entry::Triangle(t) = e {
-                let t_max = best.map_or(ray.t_max, |b| b.t);
-                if let Some(h) = t.hit(ray.o, &sh, ray.t_min, t_max) {
-                    best = Some(h);
-                }
+            let t_max = best.map_or(ray.t_max, |b| b.t);
+            let hit = match e {
+                Entry::Triangle(t) => t.hit(ray.o, &sh, ray.t_min, t_max),
+                Entry::Quad(q) => q.hit(ray.o, &sh, ray.t_min, t_max),
+                _ => None,
+            };
+            if hit.is_some() {
+                best = hit;
             }
         }
         best
@@ -318,6 +348,7 @@ impl LightSet {
             Entry::Spot(l) => delta(spot::sample(l, p), choice),
             Entry::Directional(l) => delta(Some(directional::sample(l)), choice),
             Entry::Triangle(t) => t.sample(scene, ctx, u, choice),
+            Entry::Quad(q) => q.sample(p, u, choice),
             Entry::Sphere(s) => s.sample(p, u, choice),
             Entry::Disk(d) => d.sample(p, u, choice),
             Entry::Rect(r) => r.sample(p, u, choice),
@@ -337,11 +368,15 @@ impl LightSet {
         if first == u32::MAX {
             return 0.0;
         }
-        let i = (first + prim) as usize;
-        let Entry::Triangle(t) = &self.entries[i] else {
+        let Some(&i) = self.triangle_entry.get((first + prim) as usize) else {
             return 0.0;
         };
-        t.pdf(self.chooser.pmf(ctx, i), ctx, q, nq)
+        let i = i as usize;
+        match &self.entries[i] {
+            Entry::Triangle(t) => t.pdf(self.chooser.pmf(ctx, i), ctx, q, nq),
+            Entry::Quad(quad) => quad.pdf(self.chooser.pmf(ctx, i), ctx.p, q),
+            _ => 0.0,
+        }
     }
 
     /// Radiance that `ray` receives from analytic area lights in front of `t_max` (the scene hit),

@@ -6,7 +6,9 @@ use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
-use super::area::{area_pdf, area_sample, hit_plane, AreaLight, SPHERICAL_SOLID_ANGLES};
+use super::area::{
+    area_pdf, area_sample, hit_plane, solid_angle_sample, AreaLight, SPHERICAL_SOLID_ANGLES,
+};
 use super::bounds::LightBounds;
 use super::LightSample;
 use crate::render::bsdf::luminance;
@@ -91,15 +93,7 @@ impl AreaLight for Rect {
             let q = s.corner + s.edge_u * u.x + s.edge_v * u.y;
             return area_sample(p, q, self.normal, self.area, s.radiance, choice);
         };
-        let to = r.sample(u) - p;
-        let dist = to.length();
-        (dist > 0.0).then(|| LightSample {
-            wi: to / dist,
-            dist,
-            li: s.radiance,
-            pdf: choice / r.solid_angle(),
-            is_delta: false,
-        })
+        solid_angle_sample(p, r.sample(u), s.radiance, choice / r.solid_angle())
     }
 
     fn hit(&self, o: Vec3, d: Vec3) -> Option<(f32, f32)> {

@@ -676,3 +676,149 @@ fn few_emitters_only_where_the_triangles_are_every_emitter() {
         .push(crate::scene::Instance::new(1, glam::Mat4::IDENTITY));
     assert!(!LightSet::new(&unlit).few_emitters());
 }
+
+/// A scene of one emissive mesh of radiance 2 over `corners`, split into two triangles along the
+/// diagonal `diagonal` (0: corners 0-2, 1: corners 1-3), in `winding` order.
+fn emissive_quad_scene(corners: [Vec3; 4], diagonal: usize, flip: bool) -> Scene {
+    let mut indices = if diagonal == 0 {
+        vec![[0, 1, 2], [0, 2, 3]]
+    } else {
+        vec![[0, 1, 3], [1, 2, 3]]
+    };
+    if flip {
+        indices.iter_mut().for_each(|t| t.swap(1, 2));
+    }
+    let mesh = crate::scene::Mesh {
+        positions: corners.to_vec(),
+        normals: vec![Vec3::Y; 4],
+        indices,
+        ..Default::default()
+    };
+    let mut scene = crate::scene::generate::single_mesh_scene(mesh);
+    scene.materials[0].emissive = Vec3::splat(2.0);
+    scene
+}
+
+/// Two triangles that make a rectangle of constant emission are one light, sampled as the
+/// rectangle: from near, grazing (1 cm off its plane, as the Cornell box ceiling sees its light),
+/// middle and far, on both sides, whichever diagonal splits it and either winding, light samples
+/// average to Lambert's irradiance of the rectangle and carry the pdf that BSDF-sampled hits on
+/// either triangle are weighed with.
+#[test]
+fn an_emissive_rectangle_of_two_triangles_is_one_light_matching_lambert() {
+    let rect = |x0: f32, z0: f32, w: f32, d: f32, y: f32| {
+        [
+            Vec3::new(x0, y, z0),
+            Vec3::new(x0 + w, y, z0),
+            Vec3::new(x0 + w, y, z0 + d),
+            Vec3::new(x0, y, z0 + d),
+        ]
+    };
+    for (corners, what) in [
+        (rect(-0.5, -0.4, 1.2, 0.9, 0.3), "near"),
+        (rect(-0.3, -0.2, 0.47, 0.38, 0.01), "grazing above"),
+        (rect(0.05, -0.2, 0.47, 0.38, 0.01), "grazing beside"),
+        (rect(-0.3, -0.2, 0.47, 0.38, -0.01), "grazing below"),
+        (rect(-0.5, -0.4, 0.7, 0.5, 3.0), "middle"),
+        (rect(-0.05, -0.04, 0.17, 0.13, 30.0), "far"),
+    ] {
+        for diagonal in [0, 1] {
+            for flip in [false, true] {
+                let scene = emissive_quad_scene(corners, diagonal, flip);
+                let set = LightSet::new(&scene);
+                assert_eq!(set.entries.len(), 1, "{what}: one light");
+                assert!(matches!(set.entries[0], Entry::Quad(_)), "{what}");
+                let n = 256;
+                let mut e = 0.0f64;
+                for (k, u) in grid(n).enumerate() {
+                    let Some(ls) = set.sample(&scene, &AT_ORIGIN, 0.5, u) else {
+                        continue;
+                    };
+                    let q = ls.wi * ls.dist;
+                    for prim in [0, 1] {
+                        let pdf = set.pdf_triangle(0, prim, &AT_ORIGIN, q, Vec3::Y);
+                        assert!(
+                            (pdf - ls.pdf).abs() <= 1e-3 * ls.pdf,
+                            "{what}, sample {k}, triangle {prim}: {pdf} vs {}",
+                            ls.pdf
+                        );
+                    }
+                    e += (luminance(ls.li) * ls.wi.y.max(0.0) / ls.pdf) as f64;
+                }
+                let e = e / (n * n) as f64;
+                // Below the plane y = 0 only the part above the horizon counts: the grazing
+                // light under the origin sends it nothing.
+                let expected = if corners[0].y > 0.0 {
+                    lambert_polygon(&corners, 2.0)
+                } else {
+                    0.0
+                };
+                assert!(
+                    (e - expected).abs() <= 2e-3 * expected,
+                    "{what}, diagonal {diagonal}, flipped {flip}: {e} vs {expected}"
+                );
+            }
+        }
+    }
+}
+
+/// Only rectangles of constant emission merge: a skewed parallelogram, a rectangle with a corner
+/// 1 mm off, and a textured emission stay two triangle lights; rays that look for emitters find
+/// either half of a merged rectangle.
+#[test]
+fn only_rectangles_of_constant_emission_merge_and_rays_find_both_halves() {
+    let square = [
+        Vec3::new(-1.0, 1.0, -1.0),
+        Vec3::new(1.0, 1.0, -1.0),
+        Vec3::new(1.0, 1.0, 1.0),
+        Vec3::new(-1.0, 1.0, 1.0),
+    ];
+    let set = LightSet::new(&emissive_quad_scene(square, 0, false));
+    assert_eq!(set.entries.len(), 1);
+    for (x, prim) in [(0.5, 0), (-0.5, 1)] {
+        // Triangle 0 is corners 0, 1, 2 (x > z), triangle 1 corners 0, 2, 3.
+        let ray = Ray::new(Vec3::new(x, 0.0, -x), Vec3::Y);
+        let hit = set.nearest_emitter(&ray).expect("the ray meets the quad");
+        assert!((hit.t - 1.0).abs() < 1e-6 && hit.prim == prim, "{hit:?}");
+    }
+
+    // Two squares and a lone triangle in one mesh: two rectangles, then the triangle, each
+    // triangle mapped to its light.
+    let mut three = emissive_quad_scene(square, 0, false);
+    let mesh = &mut three.meshes[0];
+    mesh.positions
+        .extend(square.map(|v| v + Vec3::X * 3.0).iter().copied());
+    mesh.indices.extend([[4, 5, 6], [4, 6, 7], [0, 5, 4]]);
+    mesh.normals = vec![Vec3::Y; 8];
+    let set = LightSet::new(&three);
+    assert!(matches!(
+        set.entries.as_slice(),
+        [Entry::Quad(_), Entry::Quad(_), Entry::Triangle(_)]
+    ));
+    assert_eq!(set.triangle_entry, [0, 0, 1, 1, 2]);
+
+    let mut skewed = square;
+    skewed[2].x += 0.5;
+    skewed[3].x += 0.5;
+    let set = LightSet::new(&emissive_quad_scene(skewed, 0, false));
+    assert_eq!(set.entries.len(), 2, "a parallelogram");
+
+    let mut apart = emissive_quad_scene(square, 0, false);
+    apart.meshes[0]
+        .positions
+        .push(Vec3::new(-1.0, 1.0, 1.0) + Vec3::X * 1e-3);
+    apart.meshes[0].indices[1] = [0, 2, 4];
+    assert_eq!(LightSet::new(&apart).entries.len(), 2, "a corner 1 mm off");
+
+    let mut textured = emissive_quad_scene(square, 0, false);
+    textured
+        .textures
+        .push(crate::scene::texture::Texture::repeating(
+            "glow".into(),
+            (1, 1),
+            vec![[255; 4]],
+            false,
+        ));
+    textured.materials[0].emissive_tex = Some(crate::scene::TexRef::new(0));
+    assert_eq!(LightSet::new(&textured).entries.len(), 2, "textured");
+}

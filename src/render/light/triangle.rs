@@ -1,5 +1,5 @@
 //! Emissive triangles, two-sided, one entry per world-space triangle of each static emissive
-//! instance: sampled in the solid angle they subtend where that is large (warped by the cosines at
+//! instance (but for pairs that make a rectangle, `quad.rs`): sampled in the solid angle they subtend where that is large (warped by the cosines at
 //! the shading point, as pbrt-v4 does), by area where it is tiny; rays find them through the
 //! accelerators, so only their pdf is asked for on BSDF hits.
 
@@ -7,7 +7,10 @@ use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
-use super::area::{area_pdf, area_sample, SPHERICAL_SOLID_ANGLES};
+use super::area::{
+    solid_angle_sample, surely_smaller, two_sided_area_pdf, two_sided_area_sample,
+    SPHERICAL_SOLID_ANGLES,
+};
 use super::bounds::LightBounds;
 use super::{LightContext, LightSample};
 use crate::geometry::triangle::{self, RayShear};
@@ -57,6 +60,11 @@ impl Triangle {
         }
     }
 
+    /// The world-space vertices.
+    pub fn vertices(&self) -> &[Vec3; 3] {
+        &self.v
+    }
+
     /// The triangle's weight among the lights: the luminance of its (estimated) flux.
     pub fn power(&self, scene: &Scene, mat: &Material, mesh: &Mesh) -> f32 {
         PI * self.area * mean_emission(scene, mat, mesh, self.prim)
@@ -87,24 +95,10 @@ impl Triangle {
         let mesh = scene.mesh_of(self.inst);
         let mat = &scene.materials[mesh.material as usize];
         let li = emission(scene, mat, mesh.uv_at(self.prim, b1, b2));
-        if let Some((omega, _)) = spherical {
-            let to = q - p;
-            let dist = to.length();
-            return (dist > 0.0).then(|| LightSample {
-                wi: to / dist,
-                dist,
-                li,
-                pdf: choice * warp_pdf / omega,
-                is_delta: false,
-            });
+        match spherical {
+            Some((omega, _)) => solid_angle_sample(p, q, li, choice * warp_pdf / omega),
+            None => two_sided_area_sample(p, q, self.n, self.area, li, choice),
         }
-        // Emissive triangles are two-sided.
-        let n = if self.n.dot(q - p) > 0.0 {
-            -self.n
-        } else {
-            self.n
-        };
-        area_sample(p, q, n, self.area, li, choice)
     }
 
     /// Where the ray from `o` (shear `sh`) meets the triangle, either face, before `t_max`: the
@@ -146,13 +140,7 @@ impl Triangle {
                 .map_or(0.0, |u| bilinear_pdf(u, w));
             return choice * warp_pdf / omega;
         }
-        let to = q - p;
-        let d2 = to.length_squared();
-        let cos_l = nq.dot(to.normalize_or_zero()).abs();
-        if cos_l <= 0.0 || self.area <= 0.0 {
-            return 0.0;
-        }
-        area_pdf(choice, d2, cos_l, self.area)
+        two_sided_area_pdf(choice, p, q, nq, self.area)
     }
 }
 
@@ -160,22 +148,10 @@ impl Triangle {
     /// The solid angle the triangle subtends from `p` and its unit corner directions, where it
     /// is sampled by solid angle (where it looks larger than `NEAR_SOLID_ANGLE`).
     fn solid_angle(&self, p: Vec3) -> Option<(f32, [Vec3; 3])> {
-        // First bounds without trigonometry, from outside the bounding sphere about the centroid:
-        // its cap, of solid angle 2 pi (1 - cos) <= pi r^2 / (d^2 - r^2); and, since every point
-        // of the triangle is at least d - r away and at the height h of `p` over its plane, the
-        // integral of cos / dist^2 = h / dist^3 over its area, at most A h / (d - r)^3 (tighter
-        // off to the side and far away: on bunny-cornell most points of the box).
-        let d2 = self.centre.distance_squared(p);
-        let excess = d2 - self.r2;
-        if excess > 0.0 {
-            if PI * self.r2 < NEAR_SOLID_ANGLE * excess {
-                return None;
-            }
-            let near = d2.sqrt() - self.r2.sqrt();
-            let h = self.n.dot(p - self.v[0]).abs();
-            if near > 0.0 && self.area * h < NEAR_SOLID_ANGLE * near * near * near {
-                return None;
-            }
+        // Bounds without trigonometry first (on bunny-cornell they decide most points of the box).
+        let h = self.n.dot(p - self.v[0]).abs();
+        if surely_smaller(p, self.centre, self.r2, self.area, h, NEAR_SOLID_ANGLE) {
+            return None;
         }
         let [a, b, c] = self.v.map(|v| (v - p).normalize_or_zero());
         let omega = spherical_triangle_area(a, b, c);
