@@ -81,21 +81,17 @@ pub(super) fn solid_angle_sample(p: Vec3, q: Vec3, li: Vec3, pdf: f32) -> Option
     })
 }
 
-/// `area_sample` for a two-sided planar light of unit normal `n` (either side): it emits towards
-/// `p` from whichever side `p` is on.
-pub(super) fn two_sided_area_sample(
-    p: Vec3,
-    q: Vec3,
-    n: Vec3,
-    area: f32,
-    li: Vec3,
-    choice: f32,
-) -> Option<LightSample> {
-    let n = if n.dot(q - p) > 0.0 { -n } else { n };
-    area_sample(p, q, n, area, li, choice)
+/// The normal of a two-sided planar light of unit normal `n` on the side facing `p` from its point
+/// `q`: what `area_sample` takes for such lights.
+pub(super) fn facing(n: Vec3, p: Vec3, q: Vec3) -> Vec3 {
+    if n.dot(q - p) > 0.0 {
+        -n
+    } else {
+        n
+    }
 }
 
-/// The pdf of `two_sided_area_sample` for point `q` (unit normal `nq`, either side) from `p`.
+/// The pdf of `area_sample` on a two-sided light for point `q` (unit normal `nq`, either side) from `p`.
 pub(super) fn two_sided_area_pdf(choice: f32, p: Vec3, q: Vec3, nq: Vec3, area: f32) -> f32 {
     let to = q - p;
     let d2 = to.length_squared();

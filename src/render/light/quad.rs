@@ -11,7 +11,7 @@ use std::f32::consts::PI;
 use glam::{Vec2, Vec3};
 
 use super::area::{
-    solid_angle_sample, surely_smaller, two_sided_area_pdf, two_sided_area_sample,
+    area_sample, facing, solid_angle_sample, surely_smaller, two_sided_area_pdf,
     SPHERICAL_SOLID_ANGLES,
 };
 use super::bounds::LightBounds;
@@ -94,7 +94,14 @@ impl Quad {
             Some(r) => solid_angle_sample(p, r.sample(u), self.radiance, choice / r.solid_angle()),
             None => {
                 let q = self.corner + self.edge_u * u.x + self.edge_v * u.y;
-                two_sided_area_sample(p, q, self.normal, self.area, self.radiance, choice)
+                area_sample(
+                    p,
+                    q,
+                    facing(self.normal, p, q),
+                    self.area,
+                    self.radiance,
+                    choice,
+                )
             }
         }
     }

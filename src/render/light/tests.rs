@@ -439,6 +439,35 @@ fn lambert_polygon(v: &[Vec3], l: f64) -> f64 {
     0.5 * l * s.abs()
 }
 
+/// Light-sampled irradiance at the origin (plane facing +Y) from the emissive triangles of
+/// instance 0, over a jittered n x n grid; each sample's pdf must be the one a BSDF-sampled ray
+/// would be weighed with on reaching the same point of any of `prims` (unit normal `nq`).
+fn sampled_irradiance_checking_pdfs(
+    scene: &Scene,
+    set: &LightSet,
+    n: usize,
+    prims: &[u32],
+    nq: Vec3,
+    what: &str,
+) -> f64 {
+    let mut e = 0.0f64;
+    for (k, u) in grid(n).enumerate() {
+        let ls = set.sample(scene, &AT_ORIGIN, (k as f32 * 0.618_034).fract(), u);
+        let Some(ls) = ls else { continue };
+        let q = ls.wi * ls.dist;
+        for &prim in prims {
+            let pdf = set.pdf_triangle(0, prim, &AT_ORIGIN, q, nq);
+            assert!(
+                (pdf - ls.pdf).abs() <= 1e-3 * ls.pdf,
+                "{what}, sample {k}, triangle {prim}: {pdf} vs {}",
+                ls.pdf
+            );
+        }
+        e += (luminance(ls.li) * ls.wi.y.max(0.0) / ls.pdf) as f64;
+    }
+    e / (n * n) as f64
+}
+
 #[test]
 fn emissive_triangle_irradiance_matches_lambert_near_and_far() {
     // Near (sampled by solid angle) and far (by area), each from both sides of the two-sided light.
@@ -486,23 +515,8 @@ fn emissive_triangle_irradiance_matches_lambert_near_and_far() {
             let mut scene = crate::scene::generate::single_mesh_scene(mesh);
             scene.materials[0].emissive = Vec3::splat(2.0);
             let set = LightSet::new(&scene);
-            let n = 128;
-            let mut e = 0.0f64;
-            for (k, u) in grid(n).enumerate() {
-                let ls = set.sample(&scene, &AT_ORIGIN, (k as f32 * 0.618_034).fract(), u);
-                let Some(ls) = ls else { continue };
-                // The pdf a BSDF-sampled ray would be weighed with, at the same point.
-                let q = ls.wi * ls.dist;
-                let nq = (v[1] - v[0]).cross(v[2] - v[0]).normalize();
-                let pdf = set.pdf_triangle(0, 0, &AT_ORIGIN, q, nq);
-                assert!(
-                    (pdf - ls.pdf).abs() <= 1e-3 * ls.pdf,
-                    "{what}: {pdf} vs {}",
-                    ls.pdf
-                );
-                e += (luminance(ls.li) * ls.wi.y.max(0.0) / ls.pdf) as f64;
-            }
-            let e = e / (n * n) as f64;
+            let nq = (v[1] - v[0]).cross(v[2] - v[0]).normalize();
+            let e = sampled_irradiance_checking_pdfs(&scene, &set, 128, &[0], nq, what);
             let expected = lambert_polygon(&v, 2.0);
             assert!(
                 (e - expected).abs() < 2e-3 * expected,
@@ -728,24 +742,7 @@ fn an_emissive_rectangle_of_two_triangles_is_one_light_matching_lambert() {
                 let set = LightSet::new(&scene);
                 assert_eq!(set.entries.len(), 1, "{what}: one light");
                 assert!(matches!(set.entries[0], Entry::Quad(_)), "{what}");
-                let n = 256;
-                let mut e = 0.0f64;
-                for (k, u) in grid(n).enumerate() {
-                    let Some(ls) = set.sample(&scene, &AT_ORIGIN, 0.5, u) else {
-                        continue;
-                    };
-                    let q = ls.wi * ls.dist;
-                    for prim in [0, 1] {
-                        let pdf = set.pdf_triangle(0, prim, &AT_ORIGIN, q, Vec3::Y);
-                        assert!(
-                            (pdf - ls.pdf).abs() <= 1e-3 * ls.pdf,
-                            "{what}, sample {k}, triangle {prim}: {pdf} vs {}",
-                            ls.pdf
-                        );
-                    }
-                    e += (luminance(ls.li) * ls.wi.y.max(0.0) / ls.pdf) as f64;
-                }
-                let e = e / (n * n) as f64;
+                let e = sampled_irradiance_checking_pdfs(&scene, &set, 256, &[0, 1], Vec3::Y, what);
                 // Below the plane y = 0 only the part above the horizon counts: the grazing
                 // light under the origin sends it nothing.
                 let expected = if corners[0].y > 0.0 {

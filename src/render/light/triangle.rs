@@ -8,7 +8,7 @@ use std::f32::consts::PI;
 use glam::{Vec2, Vec3};
 
 use super::area::{
-    solid_angle_sample, surely_smaller, two_sided_area_pdf, two_sided_area_sample,
+    area_sample, facing, solid_angle_sample, surely_smaller, two_sided_area_pdf,
     SPHERICAL_SOLID_ANGLES,
 };
 use super::bounds::LightBounds;
@@ -97,7 +97,7 @@ impl Triangle {
         let li = emission(scene, mat, mesh.uv_at(self.prim, b1, b2));
         match spherical {
             Some((omega, _)) => solid_angle_sample(p, q, li, choice * warp_pdf / omega),
-            None => two_sided_area_sample(p, q, self.n, self.area, li, choice),
+            None => area_sample(p, q, facing(self.n, p, q), self.area, li, choice),
         }
     }
 
