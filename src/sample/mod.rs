@@ -7,6 +7,8 @@
 //! `warp` maps the unit square onto the domains the renderer samples, and `mis` weighs two sampling
 //! strategies against each other.
 
+#[cfg(test)]
+pub(crate) mod chi_square;
 pub mod mis;
 mod sobol;
 mod stratified;

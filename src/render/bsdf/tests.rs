@@ -9,6 +9,7 @@ use glam::{Vec2, Vec3};
 use super::fresnel::schlick;
 use super::*;
 use crate::geometry::Frame;
+use crate::sample::chi_square::pearson_p_value;
 
 mod anisotropy;
 mod diffuse_transmission;
@@ -274,27 +275,6 @@ fn frame_is_orthonormal() {
 
 // ---- Layers: chi-square of sampling, white furnace, and the spec's formulas transcribed ----
 
-/// Standard normal upper tail, from erfc (Abramowitz and Stegun 7.1.26, error under 1.5e-7).
-fn normal_tail(z: f64) -> f64 {
-    let x = z.abs() / std::f64::consts::SQRT_2;
-    let t = 1.0 / (1.0 + 0.3275911 * x);
-    let poly = t
-        * (0.254829592
-            + t * (-0.284496736 + t * (1.421413741 + t * (-1.453152027 + t * 1.061405429))));
-    let erfc = poly * (-x * x).exp();
-    if z >= 0.0 {
-        0.5 * erfc
-    } else {
-        1.0 - 0.5 * erfc
-    }
-}
-
-/// Upper tail of the chi-square distribution with `k` degrees of freedom (Wilson-Hilferty).
-fn chi2_p_value(x: f64, k: f64) -> f64 {
-    let z = ((x / k).powf(1.0 / 3.0) - (1.0 - 2.0 / (9.0 * k))) / (2.0 / (9.0 * k)).sqrt();
-    normal_tail(z)
-}
-
 const THETA_BINS: usize = 16;
 const PHI_BINS: usize = 32;
 
@@ -338,22 +318,7 @@ fn chi_square(bsdf: &Bsdf, wo: Vec3, n: u32) -> f64 {
             expected[a * PHI_BINS + b] = sum / (SUB * SUB) as f64 * (dz * dphi) as f64 * n as f64;
         }
     }
-    let (mut chi2, mut dof) = (0.0f64, 0.0f64);
-    let (mut pool_o, mut pool_e) = (0.0f64, 0.0f64);
-    for (o, e) in observed.iter().zip(&expected) {
-        if *e < 5.0 {
-            pool_o += o;
-            pool_e += e;
-        } else {
-            chi2 += (o - e) * (o - e) / e;
-            dof += 1.0;
-        }
-    }
-    if pool_e >= 5.0 {
-        chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e;
-        dof += 1.0;
-    }
-    chi2_p_value(chi2, (dof - 1.0).max(1.0))
+    pearson_p_value(&observed, &expected)
 }
 
 /// A white Lambert base (no specular layer), for isolating the layers above it.

@@ -17,6 +17,7 @@ mod disk;
 mod distribution;
 mod environment;
 mod point;
+mod projected;
 mod quad;
 mod rect;
 mod sphere;
@@ -348,7 +349,7 @@ impl LightSet {
             Entry::Spot(l) => delta(spot::sample(l, p), choice),
             Entry::Directional(l) => delta(Some(directional::sample(l)), choice),
             Entry::Triangle(t) => t.sample(scene, ctx, u, choice),
-            Entry::Quad(q) => q.sample(p, u, choice),
+            Entry::Quad(q) => q.sample(ctx, u, choice),
             Entry::Sphere(s) => s.sample(p, u, choice),
             Entry::Disk(d) => d.sample(p, u, choice),
             Entry::Rect(r) => r.sample(p, u, choice),
@@ -374,7 +375,7 @@ impl LightSet {
         let i = i as usize;
         match &self.entries[i] {
             Entry::Triangle(t) => t.pdf(self.chooser.pmf(ctx, i), ctx, q, nq),
-            Entry::Quad(quad) => quad.pdf(self.chooser.pmf(ctx, i), ctx.p, q),
+            Entry::Quad(quad) => quad.pdf(self.chooser.pmf(ctx, i), ctx, q),
             _ => 0.0,
         }
     }

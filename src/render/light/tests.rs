@@ -759,6 +759,38 @@ fn an_emissive_rectangle_of_two_triangles_is_one_light_matching_lambert() {
     }
 }
 
+/// A point on an emissive rectangle (a path that bounces off the light) sees it edge on: no light
+/// from it, though rounding puts all its corners to one side of the point.
+#[test]
+fn a_point_on_an_emissive_rectangle_gets_none_of_its_light() {
+    // Tilted, so that points on it are off its plane by rounding.
+    let tilt = glam::Quat::from_euler(glam::EulerRot::XYZ, 0.3, 0.2, -0.4);
+    let corners = [(-0.3, -0.2), (0.17, -0.2), (0.17, 0.18), (-0.3, 0.18)]
+        .map(|(x, z)| tilt * Vec3::new(x, 0.548_8, z));
+    let scene = emissive_quad_scene(corners, 0, false);
+    let set = LightSet::new(&scene);
+    let normal = tilt * Vec3::Y;
+    let (c, u, v) = (corners[0], corners[1] - corners[0], corners[3] - corners[0]);
+    for (s, t) in [
+        (0.013_7, 0.521_3),
+        (0.971_9, 0.1),
+        (0.1, 0.983_3),
+        (0.5, 0.5),
+    ] {
+        let p = c + u * s + v * t;
+        for n in [normal, -normal] {
+            let ctx = LightContext { p, n };
+            let mut e = 0.0;
+            for u in grid(32) {
+                if let Some(ls) = set.sample(&scene, &ctx, 0.5, u) {
+                    e += luminance(ls.li) * ls.wi.dot(n).abs() / ls.pdf;
+                }
+            }
+            assert!(e < 1e-3, "at {p}, normal {n}: {e}");
+        }
+    }
+}
+
 /// Only rectangles of constant emission merge: a skewed parallelogram, a rectangle with a corner
 /// 1 mm off, and a textured emission stay two triangle lights; rays that look for emitters find
 /// either half of a merged rectangle.
