@@ -17,6 +17,7 @@ pub mod list;
 pub mod objects;
 #[cfg(feature = "obvhs")]
 pub mod obvhs;
+mod presplit;
 #[cfg(test)]
 mod testing;
 
