@@ -25,6 +25,9 @@ const MIN_FRACTION: f32 = 0.1;
 /// the smallest fraction 0.75^16 = 1% of samples are lost.
 const TRIES: i32 = 64;
 
+/// Points nearer the polygon's plane than this times its size are taken to lie in it.
+const IN_PLANE: f32 = 1e-4;
+
 /// A planar convex polygon as sampled by projected solid angle from one point.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct ProjectedPolygon {
@@ -42,6 +45,14 @@ impl ProjectedPolygon {
     /// `MIN_FRACTION` of the projected hemisphere; None elsewhere and without a normal.
     pub fn new<const N: usize>(p: Vec3, n: Vec3, corners: &[Vec3; N]) -> Option<Self> {
         if n == Vec3::ZERO {
+            return None;
+        }
+        // A point in the polygon's own plane (on the light itself) sees it edge on: nothing, though
+        // rounding can put all its corners to one side of the point there.
+        let c0 = corners[0];
+        let normal = (corners[1] - c0).cross(corners[2] - c0);
+        let size = corners.iter().map(|c| c.distance(c0)).fold(0.0, f32::max);
+        if normal.dot(p - c0).abs() <= IN_PLANE * normal.length() * size {
             return None;
         }
         let heights = corners.iter().map(|c| n.dot(*c - p));
@@ -76,9 +87,9 @@ impl ProjectedPolygon {
         })
     }
 
-    /// A direction towards the polygon and the point where it meets it, found by `meets` (the
-    /// point along a unit direction, where there is one), from `u` and tries hashed from it.
-    pub fn sample(&self, u: Vec2, meets: impl Fn(Vec3) -> Option<Vec3>) -> Option<(Vec3, Vec3)> {
+    /// A direction towards the polygon and where it meets it, found by `meets` (what it knows of
+    /// the point along a unit direction, where there is one), from `u` and tries hashed from it.
+    pub fn sample<T>(&self, u: Vec2, meets: impl Fn(Vec3) -> Option<T>) -> Option<(Vec3, T)> {
         let mut key = (u.x.to_bits() as u64) << 32 | u.y.to_bits() as u64;
         let mut u = u;
         for _ in 0..TRIES {
@@ -229,5 +240,8 @@ mod tests {
         assert!(ProjectedPolygon::new(Vec3::ZERO, Vec3::Z, &square(5.0, 1.0)).is_none());
         let tilted = Vec3::new(1.0, 0.0, 0.5).normalize();
         assert!(ProjectedPolygon::new(Vec3::ZERO, tilted, &square(1.0, 1.0)).is_none());
+        // On the polygon's own plane (off it by rounding alone).
+        let on = Vec3::new(0.1, 0.2, 1.0 + f32::EPSILON);
+        assert!(ProjectedPolygon::new(on, Vec3::Z, &square(1.0, 1.0)).is_none());
     }
 }

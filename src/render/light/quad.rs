@@ -35,10 +35,6 @@ const RECTANGLE_TOLERANCE: f32 = 1e-5;
 /// replaced, 0.2 sr 0.172 at 1.02x (the spherical map's trigonometry at more points of the room).
 const NEAR_SOLID_ANGLE: f32 = 0.5;
 
-/// Points nearer the light's plane than this times its half diagonal are taken to lie in it (its
-/// rounding, on the light itself, can put all corners to one side of a point there).
-const IN_PLANE: f32 = 1e-4;
-
 #[derive(Clone, Debug)]
 pub(super) struct Quad {
     /// The two triangles, for rays that look for emitters themselves (`LightSet::nearest_emitter`).
@@ -152,11 +148,8 @@ impl Quad {
             return Way::Area;
         }
         let (c, u, v) = (self.corner, self.edge_u, self.edge_v);
-        // A point in the light's own plane (on the light itself) sees it edge on: nothing.
-        if h > IN_PLANE * self.r2.sqrt() {
-            if let Some(s) = ProjectedPolygon::new(p, ctx.n, &[c, c + u, c + u + v, c + v]) {
-                return Way::Projected(s);
-            }
+        if let Some(s) = ProjectedPolygon::new(p, ctx.n, &[c, c + u, c + u + v, c + v]) {
+            return Way::Projected(s);
         }
         match SphericalRectangle::new(p, c, u, v) {
             Some(r)

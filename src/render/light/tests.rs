@@ -759,6 +759,46 @@ fn an_emissive_rectangle_of_two_triangles_is_one_light_matching_lambert() {
     }
 }
 
+/// Where an emissive triangle or rectangle fills much of a Lambertian point's sky, each light
+/// sample alone brings Lambert's irradiance (projected solid-angle sampling: the cosine is in the
+/// pdf), within the 0.12% that samples whose tries all miss can take from the rest.
+#[test]
+fn wide_lights_give_lambert_from_every_sample() {
+    let tri = [
+        Vec3::new(-0.9, 0.4, -0.6),
+        Vec3::new(1.1, 0.5, -0.3),
+        Vec3::new(0.1, 0.3, 1.2),
+    ];
+    let mesh = crate::scene::Mesh {
+        positions: tri.to_vec(),
+        normals: vec![Vec3::Y; 3],
+        indices: vec![[0, 1, 2]],
+        ..Default::default()
+    };
+    let mut triangle = crate::scene::generate::single_mesh_scene(mesh);
+    triangle.materials[0].emissive = Vec3::splat(2.0);
+    let rect = [(-0.3, -0.2), (0.17, -0.2), (0.17, 0.18), (-0.3, 0.18)]
+        .map(|(x, z)| Vec3::new(x, 0.01, z));
+    for (scene, corners) in [
+        (triangle, tri.to_vec()),
+        (emissive_quad_scene(rect, 0, false), rect.to_vec()),
+    ] {
+        let set = LightSet::new(&scene);
+        let expected = lambert_polygon(&corners, 2.0) as f32;
+        for (k, u) in grid(16).enumerate() {
+            let ls = set
+                .sample(&scene, &AT_ORIGIN, 0.5, u)
+                .expect("a wide light is met");
+            let e = luminance(ls.li) * ls.wi.y / ls.pdf;
+            assert!(
+                e >= expected * (1.0 - 1e-4) && e <= expected * 1.002,
+                "{} corners, sample {k}: {e} vs {expected}",
+                corners.len()
+            );
+        }
+    }
+}
+
 /// A point on an emissive rectangle (a path that bounces off the light) sees it edge on: no light
 /// from it, though rounding puts all its corners to one side of the point.
 #[test]
