@@ -99,28 +99,29 @@ pub struct Bvh {
 impl Bvh {
     /// A BVH over exactly these triangles (hits report `ids`), in whatever space they are given.
     pub fn new(tris: Vec<[Vec3; 3]>, ids: Vec<TriId>) -> Self {
-        let whole = |(i, t): (usize, &[Vec3; 3])| PrimRef::new(&Aabb::from_points(*t), i as u32);
-        let mut refs: Vec<PrimRef> = if tris.len() > PARALLEL_THRESHOLD {
-            tris.par_iter().enumerate().map(whole).collect()
-        } else {
-            tris.iter().enumerate().map(whole).collect()
-        };
-        // Split triangles: the first part's reference replaces the whole one's, the others follow.
         let pieces = presplit::pieces(&tris);
-        let split: Vec<(usize, Vec<Aabb>)> = (0..tris.len())
-            .into_par_iter()
-            .filter(|&i| pieces[i] > 1)
-            .map(|i| {
-                let mut boxes = Vec::with_capacity(pieces[i]);
-                presplit::part_boxes(&tris[i], pieces[i], &mut boxes);
-                (i, boxes)
-            })
-            .collect();
-        refs.reserve(split.iter().map(|(_, b)| b.len() - 1).sum());
-        for (i, boxes) in split {
-            refs[i] = PrimRef::new(&boxes[0], i as u32);
-            refs.extend(boxes[1..].iter().map(|b| PrimRef::new(b, i as u32)));
-        }
+        // The references of triangles `first..` of `chunk`: one per part of each.
+        let refs_of = |(c, chunk): (usize, &[[Vec3; 3]])| {
+            let (mut refs, mut boxes) = (Vec::with_capacity(chunk.len()), Vec::new());
+            for (k, t) in chunk.iter().enumerate() {
+                let i = c * PARALLEL_THRESHOLD + k;
+                boxes.clear();
+                presplit::part_boxes(t, pieces[i], &mut boxes);
+                refs.extend(boxes.iter().map(|b| PrimRef::new(b, i as u32)));
+            }
+            refs
+        };
+        let mut refs: Vec<PrimRef> = if tris.len() > PARALLEL_THRESHOLD {
+            tris.par_chunks(PARALLEL_THRESHOLD)
+                .enumerate()
+                .flat_map_iter(refs_of)
+                .collect()
+        } else {
+            tris.chunks(PARALLEL_THRESHOLD)
+                .enumerate()
+                .flat_map(refs_of)
+                .collect()
+        };
         let mut bin = Node::zeroed((2 * refs.len()).max(1) - 1);
         if !refs.is_empty() {
             let bounds = bounds_of(&refs);

@@ -9,7 +9,6 @@
 //! well-shaped triangles gets few.
 
 use glam::{DVec3, Vec3};
-use rayon::prelude::*;
 
 use crate::geometry::Aabb;
 
@@ -116,35 +115,32 @@ fn meet(a: Aabb, b: Aabb) -> Aabb {
 /// cube root of how far its box's surface exceeds twice the triangle's own area (what a right
 /// triangle along the axes has).
 pub(super) fn pieces(tris: &[[Vec3; 3]]) -> Vec<usize> {
-    let excess = |t: &[Vec3; 3]| {
-        let area = (t[1] - t[0]).cross(t[2] - t[0]).length();
-        let box_area = Aabb::from_points(*t).surface_area();
-        let e = (box_area - 2.0 * area).max(0.0);
-        if e.is_finite() {
-            e.cbrt()
-        } else {
-            0.0
-        }
-    };
-    let excess: Vec<f32> = if tris.len() > PARALLEL {
-        tris.par_iter().map(excess).collect()
-    } else {
-        tris.iter().map(excess).collect()
-    };
-    let total: f64 = excess.iter().map(|&e| e as f64).sum();
-    let scale = if total > 0.0 {
-        BUDGET as f64 * tris.len() as f64 / total
-    } else {
-        0.0
-    };
+    let excess: Vec<f64> = tris
+        .iter()
+        .map(|t| {
+            let area = (t[1] - t[0]).cross(t[2] - t[0]).length();
+            let box_area = Aabb::from_points(*t).surface_area();
+            let e = (box_area - 2.0 * area).max(0.0) as f64;
+            if e.is_finite() {
+                e.cbrt()
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let total: f64 = excess.iter().sum();
+    let budget = BUDGET as f64 * tris.len() as f64;
     excess
         .iter()
-        .map(|&e| 1 + (scale * e as f64) as usize)
+        .map(|&e| {
+            if total > 0.0 {
+                1 + (budget * e / total) as usize
+            } else {
+                1
+            }
+        })
         .collect()
 }
-
-/// Meshes of more triangles than this have their excesses found in parallel.
-const PARALLEL: usize = 1 << 14;
 
 #[cfg(test)]
 mod tests {
