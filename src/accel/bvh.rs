@@ -12,7 +12,6 @@ use rayon::prelude::*;
 
 use super::flat::{take_lanes, TriId};
 use super::layered::{Layered, Triangles};
-use super::presplit;
 use crate::geometry::f4::F4;
 use crate::geometry::lanes::Lanes;
 #[cfg(target_arch = "x86_64")]
@@ -99,27 +98,15 @@ pub struct Bvh {
 impl Bvh {
     /// A BVH over exactly these triangles (hits report `ids`), in whatever space they are given.
     pub fn new(tris: Vec<[Vec3; 3]>, ids: Vec<TriId>) -> Self {
-        let pieces = presplit::pieces(&tris);
-        // The references of triangles `first..` of `chunk`: one per part of each.
-        let refs_of = |(c, chunk): (usize, &[[Vec3; 3]])| {
-            let (mut refs, mut boxes) = (Vec::with_capacity(chunk.len()), Vec::new());
-            for (k, t) in chunk.iter().enumerate() {
-                let i = c * PARALLEL_THRESHOLD + k;
-                boxes.clear();
-                presplit::part_boxes(t, pieces[i], &mut boxes);
-                refs.extend(boxes.iter().map(|b| PrimRef::new(b, i as u32)));
-            }
-            refs
-        };
         let mut refs: Vec<PrimRef> = if tris.len() > PARALLEL_THRESHOLD {
-            tris.par_chunks(PARALLEL_THRESHOLD)
+            tris.par_iter()
                 .enumerate()
-                .flat_map_iter(refs_of)
+                .map(|(i, t)| PrimRef::new(t, i as u32))
                 .collect()
         } else {
-            tris.chunks(PARALLEL_THRESHOLD)
+            tris.iter()
                 .enumerate()
-                .flat_map(refs_of)
+                .map(|(i, t)| PrimRef::new(t, i as u32))
                 .collect()
         };
         let mut bin = Node::zeroed((2 * refs.len()).max(1) - 1);
@@ -382,20 +369,11 @@ struct Collapsed {
     ids: Vec<TriId>,
 }
 
-/// Packs a binary leaf's triangles into packets of four; returns the first packet's index and the
-/// number of triangles.
-fn pack_leaf(src: &Source, leaf: &Node, out: &mut Collapsed) -> (u32, u32) {
+/// Packs a binary leaf's triangles into packets of four; returns the first packet's index.
+fn pack_leaf(src: &Source, leaf: &Node, out: &mut Collapsed) -> u32 {
     let first = out.packets.len() as u32;
-    // A triangle split into parts may have several in one leaf: it is tested once.
-    let mut unique = [0u32; MAX_LEAF];
-    let mut n = 0;
-    for &i in &src.order[leaf.index as usize..(leaf.index + leaf.count) as usize] {
-        if !unique[..n].contains(&i) {
-            unique[n] = i;
-            n += 1;
-        }
-    }
-    for (packet, lanes) in Tri4::packets(&unique[..n], src.tris) {
+    let refs = &src.order[leaf.index as usize..(leaf.index + leaf.count) as usize];
+    for (packet, lanes) in Tri4::packets(refs, src.tris) {
         out.packets.push(packet);
         out.ids.extend(lanes.map(|i| {
             if i == u32::MAX {
@@ -405,7 +383,7 @@ fn pack_leaf(src: &Source, leaf: &Node, out: &mut Collapsed) -> (u32, u32) {
             }
         }));
     }
-    (first, n as u32)
+    first
 }
 
 /// Trees over at least this many references have the subtrees of their root collapsed in parallel.
@@ -520,7 +498,7 @@ fn collapse(src: &Source, at: usize, size: usize, parallel: bool, out: &mut Coll
     for (lane, &(k, kn)) in kids.iter().enumerate() {
         let c = bin[k];
         let (child, count) = if c.count > 0 {
-            pack_leaf(src, &c, out)
+            (pack_leaf(src, &c, out), c.count)
         } else if let Some(sub) = subs.get_mut(lane).and_then(Option::take) {
             (out.append(sub), 0)
         } else {
@@ -550,8 +528,8 @@ struct PrimRef {
 const INDEX_BITS: u32 = 0x3F80_0000;
 
 impl PrimRef {
-    /// The reference to (part of) triangle `index` inside box `b`.
-    fn new(b: &Aabb, index: u32) -> Self {
+    fn new(t: &[Vec3; 3], index: u32) -> Self {
+        let b = Aabb::from_points(*t);
         let [x, y, z] = b.min.to_array();
         let [u, v, w] = b.max.to_array();
         Self {

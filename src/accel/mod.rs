@@ -17,7 +17,6 @@ pub mod list;
 pub mod objects;
 #[cfg(feature = "obvhs")]
 pub mod obvhs;
-mod presplit;
 #[cfg(test)]
 mod testing;
 
