@@ -506,14 +506,8 @@ fn emissive_triangle_irradiance_matches_lambert_near_and_far() {
         ),
     ] {
         for winding in [[0, 1, 2], [0, 2, 1]] {
-            let mesh = crate::scene::Mesh {
-                positions: winding.map(|i| v[i]).to_vec(),
-                normals: vec![Vec3::Y; 3],
-                indices: vec![[0, 1, 2]],
-                ..Default::default()
-            };
-            let mut scene = crate::scene::generate::single_mesh_scene(mesh);
-            scene.materials[0].emissive = Vec3::splat(2.0);
+            let positions = winding.map(|i| v[i]).to_vec();
+            let scene = emissive_mesh_scene(positions, vec![[0, 1, 2]], Vec3::splat(2.0));
             let set = LightSet::new(&scene);
             let nq = (v[1] - v[0]).cross(v[2] - v[0]).normalize();
             let e = sampled_irradiance_checking_pdfs(&scene, &set, 128, &[0], nq, what);
@@ -572,14 +566,7 @@ fn the_cosine_warp_lowers_the_variance_of_a_near_triangle() {
         Vec3::new(1.5, 0.05, -1.0),
         Vec3::new(0.0, 2.0, 0.3),
     ];
-    let mesh = crate::scene::Mesh {
-        positions: v.to_vec(),
-        normals: vec![Vec3::Z; 3],
-        indices: vec![[0, 1, 2]],
-        ..Default::default()
-    };
-    let mut scene = crate::scene::generate::single_mesh_scene(mesh);
-    scene.materials[0].emissive = Vec3::ONE;
+    let scene = emissive_mesh_scene(v.to_vec(), vec![[0, 1, 2]], Vec3::ONE);
     let set = LightSet::new(&scene);
     let variance = |ctx: LightContext| {
         mean_and_variance(|u| {
@@ -649,18 +636,12 @@ fn a_near_rect_light_sampled_by_solid_angle_varies_less_than_by_area() {
 /// cut-outs, the emitter test would not. Where it applies it finds the nearest of them.
 #[test]
 fn few_emitters_only_where_the_triangles_are_every_emitter() {
-    let mesh = crate::scene::Mesh {
-        positions: vec![
-            Vec3::new(-1.0, 1.0, -1.0),
-            Vec3::new(1.0, 1.0, -1.0),
-            Vec3::new(0.0, 1.0, 1.0),
-        ],
-        normals: vec![-Vec3::Y; 3],
-        indices: vec![[0, 1, 2]],
-        ..Default::default()
-    };
-    let mut scene = crate::scene::generate::single_mesh_scene(mesh);
-    scene.materials[0].emissive = Vec3::splat(2.0);
+    let positions = vec![
+        Vec3::new(-1.0, 1.0, -1.0),
+        Vec3::new(1.0, 1.0, -1.0),
+        Vec3::new(0.0, 1.0, 1.0),
+    ];
+    let scene = emissive_mesh_scene(positions, vec![[0, 1, 2]], Vec3::splat(2.0));
     let set = LightSet::new(&scene);
     assert!(set.few_emitters());
     let up = Ray::new(Vec3::ZERO, Vec3::Y);
@@ -702,14 +683,20 @@ fn emissive_quad_scene(corners: [Vec3; 4], diagonal: usize, flip: bool) -> Scene
     if flip {
         indices.iter_mut().for_each(|t| t.swap(1, 2));
     }
+    emissive_mesh_scene(corners.to_vec(), indices, Vec3::splat(2.0))
+}
+
+/// A scene of one mesh over `positions` and `indices` emitting `radiance` (vertex normals +Y:
+/// emission is two-sided, and light sampling reads none).
+fn emissive_mesh_scene(positions: Vec<Vec3>, indices: Vec<[u32; 3]>, radiance: Vec3) -> Scene {
     let mesh = crate::scene::Mesh {
-        positions: corners.to_vec(),
-        normals: vec![Vec3::Y; 4],
+        normals: vec![Vec3::Y; positions.len()],
+        positions,
         indices,
         ..Default::default()
     };
     let mut scene = crate::scene::generate::single_mesh_scene(mesh);
-    scene.materials[0].emissive = Vec3::splat(2.0);
+    scene.materials[0].emissive = radiance;
     scene
 }
 
@@ -769,14 +756,7 @@ fn wide_lights_give_lambert_from_every_sample() {
         Vec3::new(1.1, 0.5, -0.3),
         Vec3::new(0.1, 0.3, 1.2),
     ];
-    let mesh = crate::scene::Mesh {
-        positions: tri.to_vec(),
-        normals: vec![Vec3::Y; 3],
-        indices: vec![[0, 1, 2]],
-        ..Default::default()
-    };
-    let mut triangle = crate::scene::generate::single_mesh_scene(mesh);
-    triangle.materials[0].emissive = Vec3::splat(2.0);
+    let triangle = emissive_mesh_scene(tri.to_vec(), vec![[0, 1, 2]], Vec3::splat(2.0));
     let rect = [(-0.3, -0.2), (0.17, -0.2), (0.17, 0.18), (-0.3, 0.18)]
         .map(|(x, z)| Vec3::new(x, 0.01, z));
     for (scene, corners) in [
