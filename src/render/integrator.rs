@@ -225,12 +225,19 @@ impl<'a> Integrator<'a> {
                 break;
             }
             // The triangle's data is fetched while the sampler draws this vertex's dimensions.
+            // A dimension that nothing reads is not drawn (its values depend on the dimension
+            // alone, so the others stay the same): one light needs no choice.
             self.scene.prefetch_triangle(&hit);
-            let mut u_choice = sampler.get_1d(Dim::LightChoice, bounce);
+            let drawn_choice = self
+                .lights
+                .chooses()
+                .then(|| sampler.get_1d(Dim::LightChoice, bounce));
             let u_light = sampler.get_2d(Dim::Light, bounce);
             let mut si = SurfaceInteraction::new(self.scene, &hit, &ray);
+            let mut u_choice = drawn_choice.unwrap_or(0.5);
             if si.bsdf.dispersion.is_some() {
-                u_choice = st.follow_one_channel(&mut si, u_choice);
+                let u = drawn_choice.unwrap_or_else(|| sampler.get_1d(Dim::LightChoice, bounce));
+                u_choice = st.follow_one_channel(&mut si, u);
             }
             if FEATURES {
                 features.hit(&si, bounce);
@@ -342,7 +349,11 @@ impl<'a> Integrator<'a> {
         st: &mut PathState,
         sampler: &mut impl Sampler,
     ) -> Option<Ray> {
-        let u_lobe = sampler.get_1d(Dim::BsdfLobe, bounce);
+        let u_lobe = if si.bsdf.chooses_lobe() {
+            sampler.get_1d(Dim::BsdfLobe, bounce)
+        } else {
+            0.5
+        };
         let u_dir = sampler.get_2d(Dim::Bsdf, bounce);
         let s = si.bsdf.sample(leave.wo, u_lobe, u_dir)?;
         // A shading normal can send a sample to the other side of the true surface than it meant

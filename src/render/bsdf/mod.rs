@@ -205,6 +205,12 @@ impl Bsdf {
         self.base_is_delta() && self.sheen.is_none() && self.coat.is_none_or(|c| c.is_delta())
     }
 
+    /// Whether `sample` reads its `u_lobe`: not for a plain Lambert base, whose one lobe takes
+    /// every sample (its probability is exactly 1).
+    pub fn chooses_lobe(&self) -> bool {
+        self.layered() || self.lambert_only() != Some(1.0)
+    }
+
     /// Whether light can arrive from behind the surface.
     pub fn transmits(&self) -> bool {
         (self.transmission > 0.0 || self.diffuse_transmission.is_some()) && self.metallic < 1.0

@@ -583,3 +583,26 @@ fn choice_probabilities_boost_only_lobes_that_count() {
     let p = choice_probabilities([0.8, 0.2, 0.0]);
     assert!((p[0] - (0.9 * 0.8 + 0.05)).abs() < 1e-6 && (p[1] - (0.9 * 0.2 + 0.05)).abs() < 1e-6);
 }
+
+/// A BSDF that says it does not choose a lobe samples the same direction whatever its lobe
+/// number (the integrator then does not draw one); one that says it does, does not.
+#[test]
+fn only_bsdfs_that_choose_a_lobe_read_the_lobe_number() {
+    let frame = Frame::from_normal(Vec3::Z);
+    let wo = Vec3::new(0.3, -0.2, 0.9).normalize();
+    let lambert = Bsdf::new(frame, Vec3::new(0.7, 0.5, 0.3), 0.0, 1.0, 0.0);
+    assert!(!lambert.chooses_lobe());
+    for k in 0..64 {
+        let u = Vec2::new(k as f32 / 64.0, (k * 37 % 64) as f32 / 64.0 + 0.004);
+        let [a, b] = [0.0, 0.999_999].map(|l| lambert.sample(wo, l, u).map(|s| (s.wi, s.f, s.pdf)));
+        assert_eq!(a, b, "sample {k}");
+    }
+    for chooses in [
+        Bsdf::new(frame, Vec3::ONE, 0.0, 0.5, 1.0),
+        Bsdf::new(frame, Vec3::ONE, 0.5, 1.0, 0.0),
+        Bsdf::new(frame, Vec3::ZERO, 0.0, 1.0, 0.0),
+        Bsdf::new(frame, Vec3::ONE, 0.0, 1.0, 0.0).with_dielectric(0.5, 1.5, true, true),
+    ] {
+        assert!(chooses.chooses_lobe());
+    }
+}

@@ -299,6 +299,11 @@ impl LightSet {
         }
     }
 
+    /// Whether `sample` reads its `u_choice`: not where one light is every choice.
+    pub fn chooses(&self) -> bool {
+        self.entries.len() > 1 || self.uses_bvh()
+    }
+
     /// Whether the scene's only emitters are a few sampled emissive triangles, so that a ray that
     /// only looks for emitters can test them instead of asking for the closest hit
     /// (`nearest_emitter`).

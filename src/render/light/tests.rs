@@ -779,6 +779,26 @@ fn wide_lights_give_lambert_from_every_sample() {
     }
 }
 
+/// With one light there is nothing to choose: the light sample is the same whatever the choice
+/// number (the integrator then does not draw one); with two, the choice is read.
+#[test]
+fn only_a_set_of_several_lights_reads_the_choice() {
+    let corners =
+        [(-0.3, -0.2), (0.17, -0.2), (0.17, 0.18), (-0.3, 0.18)].map(|(x, z)| Vec3::new(x, 0.5, z));
+    let one = emissive_quad_scene(corners, 0, false);
+    let set = LightSet::new(&one);
+    assert!(!set.chooses());
+    for u in grid(8) {
+        let [a, b] = [0.0, 0.999_999].map(|c| {
+            set.sample(&one, &AT_ORIGIN, c, u)
+                .map(|ls| (ls.wi, ls.dist, ls.pdf))
+        });
+        assert_eq!(a, b);
+    }
+    let two = emissive_mesh_scene(corners.to_vec(), vec![[0, 1, 2], [2, 3, 1]], Vec3::ONE);
+    assert!(LightSet::new(&two).chooses());
+}
+
 /// A point on an emissive rectangle (a path that bounces off the light) sees it edge on: no light
 /// from it, though rounding puts all its corners to one side of the point.
 #[test]
