@@ -240,6 +240,17 @@ mod tests {
         assert!(ProjectedPolygon::new(Vec3::ZERO, Vec3::Z, &square(5.0, 1.0)).is_none());
         let tilted = Vec3::new(1.0, 0.0, 0.5).normalize();
         assert!(ProjectedPolygon::new(Vec3::ZERO, tilted, &square(1.0, 1.0)).is_none());
+        // Degenerate input: a NaN point, a triangle of no area, a point at a corner.
+        let nan = Vec3::splat(f32::NAN);
+        assert!(ProjectedPolygon::new(nan, Vec3::Z, &square(1.0, 1.0)).is_none());
+        let flat = [
+            Vec3::new(0.0, 0.0, 1.0),
+            Vec3::new(1.0, 0.0, 1.0),
+            Vec3::new(2.0, 0.0, 1.0),
+        ];
+        assert!(ProjectedPolygon::new(Vec3::ZERO, Vec3::Z, &flat).is_none());
+        let corner = square(1.0, 1.0)[0];
+        assert!(ProjectedPolygon::new(corner, Vec3::Z, &square(1.0, 1.0)).is_none());
         // On the polygon's own plane (off it by rounding alone).
         let on = Vec3::new(0.1, 0.2, 1.0 + f32::EPSILON);
         assert!(ProjectedPolygon::new(on, Vec3::Z, &square(1.0, 1.0)).is_none());
