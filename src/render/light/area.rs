@@ -6,7 +6,17 @@ use std::f32::consts::PI;
 use glam::{Vec2, Vec3};
 
 use super::bounds::LightBounds;
+use super::projected::ProjectedPolygon;
 use super::LightSample;
+
+/// How a planar light is sampled from a point: by projected solid angle where it fills much of
+/// the sky there, by solid angle (with what the shape's spherical map needs) where it looks large,
+/// by area elsewhere. A shape decides once per point, for its sample and its pdf alike.
+pub(super) enum Way<S> {
+    Projected(ProjectedPolygon),
+    Spherical(S),
+    Area,
+}
 
 /// An analytic area light (sphere, disk, rectangle): it emits and is seen but occludes nothing, so
 /// rays find it through `hit` and light sampling through `sample`, both with the same pdf.

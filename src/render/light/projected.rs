@@ -107,6 +107,11 @@ impl ProjectedPolygon {
     pub fn pdf(&self, d: Vec3) -> f32 {
         self.frame.n.dot(d).max(0.0) / self.psa * self.kept
     }
+
+    /// `pdf` of the direction along `to` (from the point to one on the polygon; 0 if zero).
+    pub fn pdf_along(&self, to: Vec3) -> f32 {
+        to.try_normalize().map_or(0.0, |d| self.pdf(d))
+    }
 }
 
 #[cfg(test)]

@@ -13,7 +13,7 @@ use std::f32::consts::PI;
 use glam::{Vec2, Vec3};
 
 use super::area::{
-    area_sample, facing, solid_angle_sample, surely_smaller, two_sided_area_pdf,
+    area_sample, facing, solid_angle_sample, surely_smaller, two_sided_area_pdf, Way,
     SPHERICAL_SOLID_ANGLES,
 };
 use super::bounds::LightBounds;
@@ -56,9 +56,12 @@ impl Quad {
     /// which is a diagonal of the rectangle that their other corners complete.
     pub fn pair(a: &Triangle, b: &Triangle, radiance: Vec3) -> Option<Self> {
         let (va, vb) = (a.vertices(), b.vertices());
-        let shared: Vec<usize> = (0..3).filter(|&i| vb.contains(&va[i])).collect();
-        let &[i, j] = shared.as_slice() else {
-            return None;
+        let shared = |i: usize| vb.contains(&va[i]);
+        let (i, j) = match [0, 1, 2].map(shared) {
+            [true, true, false] => (0, 1),
+            [true, false, true] => (0, 2),
+            [false, true, true] => (1, 2),
+            _ => return None,
         };
         let x = va[3 - i - j];
         let y = *vb.iter().find(|v| **v != va[i] && **v != va[j])?;
@@ -120,7 +123,7 @@ impl Quad {
     pub fn pdf(&self, choice: f32, ctx: &LightContext, q: Vec3) -> f32 {
         let p = ctx.p;
         match self.way(ctx) {
-            Way::Projected(s) => choice * (q - p).try_normalize().map_or(0.0, |d| s.pdf(d)),
+            Way::Projected(s) => choice * s.pdf_along(q - p),
             Way::Spherical(r) => choice / r.solid_angle(),
             Way::Area => two_sided_area_pdf(choice, p, q, self.normal, self.area),
         }
@@ -141,7 +144,7 @@ impl Quad {
 
     /// How the rectangle is sampled for `ctx`: by projected solid angle where it fills much of
     /// the sky, by solid angle where it looks large, by area elsewhere.
-    fn way(&self, ctx: &LightContext) -> Way {
+    fn way(&self, ctx: &LightContext) -> Way<SphericalRectangle> {
         let p = ctx.p;
         let h = self.normal.dot(p - self.corner).abs();
         if surely_smaller(p, self.centre, self.r2, self.area, h, NEAR_SOLID_ANGLE) {
@@ -174,11 +177,4 @@ impl Quad {
         let w = r.dot(self.edge_v) / self.edge_v.length_squared();
         ((0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&w)).then_some(q)
     }
-}
-
-/// The three ways a rectangle is sampled from a point.
-enum Way {
-    Projected(ProjectedPolygon),
-    Spherical(SphericalRectangle),
-    Area,
 }

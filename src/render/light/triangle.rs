@@ -11,7 +11,7 @@ use std::f32::consts::PI;
 use glam::{Vec2, Vec3};
 
 use super::area::{
-    area_sample, facing, solid_angle_sample, surely_smaller, two_sided_area_pdf,
+    area_sample, facing, solid_angle_sample, surely_smaller, two_sided_area_pdf, Way,
     SPHERICAL_SOLID_ANGLES,
 };
 use super::bounds::LightBounds;
@@ -81,31 +81,31 @@ impl Triangle {
         u: Vec2,
         choice: f32,
     ) -> Option<LightSample> {
-        let (v, p) = (&self.v, ctx.p);
-        if let Some(s) = self.projected(ctx) {
-            let (d, (q, b1, b2)) = s.sample(u, |d| self.crossing(p, d))?;
-            let li = self.emission(scene, b1, b2);
-            return solid_angle_sample(p, q, li, choice * s.pdf(d));
-        }
-        let spherical = self.solid_angle(p);
-        let (u, warp_pdf) = match spherical.and_then(|(_, corners)| cosine_weights(ctx.n, corners))
-        {
-            Some(w) => {
-                let warped = bilinear(u, w);
-                (warped, bilinear_pdf(warped, w))
+        let p = ctx.p;
+        let (q, (b1, b2), pdf) = match self.way(ctx) {
+            Way::Projected(s) => {
+                let (d, (q, b1, b2)) = s.sample(u, |d| self.crossing(p, d))?;
+                (q, (b1, b2), choice * s.pdf(d))
             }
-            None => (u, 1.0),
+            Way::Spherical((omega, [a, b, c])) => {
+                let (u, warp_pdf) = match cosine_weights(ctx.n, [a, b, c]) {
+                    Some(w) => {
+                        let warped = bilinear(u, w);
+                        (warped, bilinear_pdf(warped, w))
+                    }
+                    None => (u, 1.0),
+                };
+                let bary = self.barycentrics_along(p, spherical_triangle(a, b, c, u)?)?;
+                (self.point(bary), bary, choice * warp_pdf / omega)
+            }
+            Way::Area => {
+                let bary = uniform_triangle(u);
+                let q = self.point(bary);
+                let li = self.emission(scene, bary.0, bary.1);
+                return area_sample(p, q, facing(self.n, p, q), self.area, li, choice);
+            }
         };
-        let (b1, b2) = match spherical {
-            Some((_, [a, b, c])) => self.barycentrics_along(p, spherical_triangle(a, b, c, u)?)?,
-            None => uniform_triangle(u),
-        };
-        let q = v[0] * (1.0 - b1 - b2) + v[1] * b1 + v[2] * b2;
-        let li = self.emission(scene, b1, b2);
-        match spherical {
-            Some((omega, _)) => solid_angle_sample(p, q, li, choice * warp_pdf / omega),
-            None => area_sample(p, q, facing(self.n, p, q), self.area, li, choice),
-        }
+        solid_angle_sample(p, q, self.emission(scene, b1, b2), pdf)
     }
 
     /// Where the ray from `o` (shear `sh`) meets the triangle, either face, before `t_max`: the
@@ -136,37 +136,50 @@ impl Triangle {
     /// `ctx`.
     pub fn pdf(&self, choice: f32, ctx: &LightContext, q: Vec3, nq: Vec3) -> f32 {
         let p = ctx.p;
-        if let Some(s) = self.projected(ctx) {
-            return choice * (q - p).try_normalize().map_or(0.0, |d| s.pdf(d));
+        match self.way(ctx) {
+            Way::Projected(s) => choice * s.pdf_along(q - p),
+            Way::Spherical((omega, [a, b, c])) => {
+                let Some(w) = cosine_weights(ctx.n, [a, b, c]) else {
+                    return choice / omega;
+                };
+                let warp_pdf = (q - p)
+                    .try_normalize()
+                    .and_then(|d| spherical_triangle_inverse(a, b, c, d))
+                    .map_or(0.0, |u| bilinear_pdf(u, w));
+                choice * warp_pdf / omega
+            }
+            Way::Area => two_sided_area_pdf(choice, p, q, nq, self.area),
         }
-        if let Some((omega, corners)) = self.solid_angle(p) {
-            let Some(w) = cosine_weights(ctx.n, corners) else {
-                return choice / omega;
-            };
-            let [a, b, c] = corners;
-            let warp_pdf = (q - p)
-                .try_normalize()
-                .and_then(|d| spherical_triangle_inverse(a, b, c, d))
-                .map_or(0.0, |u| bilinear_pdf(u, w));
-            return choice * warp_pdf / omega;
-        }
-        two_sided_area_pdf(choice, p, q, nq, self.area)
     }
 }
 
 impl Triangle {
-    /// The solid angle the triangle subtends from `p` and its unit corner directions, where it
-    /// is sampled by solid angle (where it looks larger than `NEAR_SOLID_ANGLE`).
-    fn solid_angle(&self, p: Vec3) -> Option<(f32, [Vec3; 3])> {
+    /// How the triangle is sampled for `ctx`: by projected solid angle where it fills enough of
+    /// the sky, by solid angle (with its solid angle and unit corner directions) where it looks
+    /// larger than `NEAR_SOLID_ANGLE`, by area elsewhere.
+    fn way(&self, ctx: &LightContext) -> Way<(f32, [Vec3; 3])> {
+        let p = ctx.p;
         // Bounds without trigonometry first (on bunny-cornell they decide most points of the box).
         let h = self.n.dot(p - self.v[0]).abs();
         if surely_smaller(p, self.centre, self.r2, self.area, h, NEAR_SOLID_ANGLE) {
-            return None;
+            return Way::Area;
+        }
+        if let Some(s) = ProjectedPolygon::new(p, ctx.n, &self.v) {
+            return Way::Projected(s);
         }
         let [a, b, c] = self.v.map(|v| (v - p).normalize_or_zero());
         let omega = spherical_triangle_area(a, b, c);
-        (omega >= NEAR_SOLID_ANGLE && SPHERICAL_SOLID_ANGLES.contains(&omega))
-            .then_some((omega, [a, b, c]))
+        if omega >= NEAR_SOLID_ANGLE && SPHERICAL_SOLID_ANGLES.contains(&omega) {
+            Way::Spherical((omega, [a, b, c]))
+        } else {
+            Way::Area
+        }
+    }
+
+    /// The point at barycentrics `(b1, b2)` (of corners 1 and 2).
+    fn point(&self, (b1, b2): (f32, f32)) -> Vec3 {
+        let v = &self.v;
+        v[0] * (1.0 - b1 - b2) + v[1] * b1 + v[2] * b2
     }
 
     /// Barycentrics (of corners 1 and 2) where the ray from `p` along `w` meets the triangle's
@@ -196,16 +209,6 @@ impl Triangle {
     fn crossing(&self, p: Vec3, d: Vec3) -> Option<(Vec3, f32, f32)> {
         let (b1, b2, t) = self.plane_crossing(p, d)?;
         (t > 0.0 && b1 >= 0.0 && b2 >= 0.0 && b1 + b2 <= 1.0).then(|| (p + d * t, b1, b2))
-    }
-
-    /// The triangle as sampled by projected solid angle from `ctx`, where it fills enough of the
-    /// sky there (never where it looks smaller than the solid-angle sampler's threshold).
-    fn projected(&self, ctx: &LightContext) -> Option<ProjectedPolygon> {
-        let h = self.n.dot(ctx.p - self.v[0]).abs();
-        if surely_smaller(ctx.p, self.centre, self.r2, self.area, h, NEAR_SOLID_ANGLE) {
-            return None;
-        }
-        ProjectedPolygon::new(ctx.p, ctx.n, &self.v)
     }
 
     /// Emitted radiance at barycentrics `(b1, b2)`.
@@ -283,19 +286,21 @@ mod tests {
                 (v[1] - p).normalize(),
                 (v[2] - p).normalize(),
             );
-            match t.solid_angle(p) {
-                Some((omega, _)) => {
+            // Without a normal, projected sampling never applies.
+            match t.way(&LightContext { p, n: Vec3::ZERO }) {
+                Way::Spherical((omega, _)) => {
                     spherical += 1;
                     assert!(omega >= NEAR_SOLID_ANGLE);
                 }
-                None if SPHERICAL_SOLID_ANGLES.contains(&exact) => {
+                Way::Projected(_) => unreachable!("no normal, no projected sampling"),
+                Way::Area if SPHERICAL_SOLID_ANGLES.contains(&exact) => {
                     declined += 1;
                     assert!(
                         exact < NEAR_SOLID_ANGLE,
                         "declined {v:?} from {p}: {exact} sr"
                     );
                 }
-                None => {}
+                Way::Area => {}
             }
         }
         // Both outcomes occur often enough for the check to mean something.
