@@ -7,6 +7,7 @@ pub mod colour;
 pub(crate) mod f4;
 pub mod frame;
 pub mod hash;
+pub mod inverse_trig;
 pub(crate) mod lanes;
 pub mod median;
 pub mod motion;

@@ -15,6 +15,7 @@ use std::sync::Arc;
 use glam::{Mat3, Vec2, Vec3};
 
 use super::LoadError;
+use crate::geometry::inverse_trig;
 
 /// A lat-long radiance map. Cloning is cheap: the pixels are shared.
 #[derive(Clone, Debug)]
@@ -88,8 +89,8 @@ impl EnvMap {
     /// Lat-long coordinates in [0,1)^2 of a world direction (u across, v down from the top).
     pub fn direction_to_uv(&self, d: Vec3) -> Vec2 {
         let m = self.rotation.transpose() * d;
-        let theta = m.y.clamp(-1.0, 1.0).acos();
-        let phi = m.z.atan2(m.x);
+        let theta = inverse_trig::acos(m.y);
+        let phi = inverse_trig::atan2(m.z, m.x);
         Vec2::new(0.5 + phi / (2.0 * PI), theta / PI)
     }
 

@@ -64,9 +64,17 @@ impl Environment {
         })
     }
 
+    /// Radiance from unit direction `d`.
+    pub fn radiance(&self, d: Vec3) -> Vec3 {
+        match &self.map {
+            None => self.radiance,
+            Some((m, _)) => self.radiance * m.lookup(d),
+        }
+    }
+
     /// Radiance from unit direction `d`, and the solid-angle pdf (before the choice probability)
     /// with which `sample` picks `d` (zero for a constant environment).
-    pub fn radiance(&self, d: Vec3) -> (Vec3, f32) {
+    pub fn radiance_and_pdf(&self, d: Vec3) -> (Vec3, f32) {
         match &self.map {
             None => (self.radiance, 0.0),
             Some((m, dist)) => {

@@ -390,6 +390,9 @@ impl LightSet {
     /// (`None` for camera rays and after specular bounces: weight 1). Lights do not stop the ray.
     pub fn emitted(&self, ray: &Ray, t_max: f32, prev: Option<(f32, LightContext)>) -> Vec3 {
         let mut l = Vec3::ZERO;
+        if self.hittable.is_empty() {
+            return l;
+        }
         let len = ray.d.length();
         if len <= 0.0 {
             return l;
@@ -418,10 +421,30 @@ impl LightSet {
         let mut l = Vec3::ZERO;
         for &i in &self.environments {
             let i = i as usize;
-            let (li, pdf) = self.environment_radiance(i, d);
-            l += li * self.mis_weight(prev, i, pdf);
+            let Entry::Environment(e) = &self.entries[i] else {
+                continue;
+            };
+            // A camera ray (or one after a delta lobe) has no light sample to weigh against, so
+            // it needs no pdf (most of an environment-lit image is such rays).
+            l += match prev {
+                None => e.radiance(d),
+                Some(_) => {
+                    let (li, pdf) = e.radiance_and_pdf(d);
+                    li * self.mis_weight(prev, i, pdf)
+                }
+            };
         }
         l
+    }
+
+    /// Radiance of environment entry `i` from unit direction `d` and the pdf of `sample` picking
+    /// `d` (before the choice probability).
+    #[cfg(test)]
+    fn environment_radiance(&self, i: usize, d: Vec3) -> (Vec3, f32) {
+        match &self.entries[i] {
+            Entry::Environment(e) => e.radiance_and_pdf(d),
+            _ => (Vec3::ZERO, 0.0),
+        }
     }
 
     /// The multiple-importance weight of a BSDF sample (pdf and context in `prev`; `None`: no
@@ -431,15 +454,6 @@ impl LightSet {
         prev.map_or(1.0, |(b, ctx)| {
             power_heuristic(b, self.chooser.pmf(&ctx, i) * pdf)
         })
-    }
-
-    /// Radiance of environment entry `i` from unit direction `d` and the pdf of `sample` picking
-    /// `d` (before the choice probability).
-    fn environment_radiance(&self, i: usize, d: Vec3) -> (Vec3, f32) {
-        match &self.entries[i] {
-            Entry::Environment(e) => e.radiance(d),
-            _ => (Vec3::ZERO, 0.0),
-        }
     }
 }
 

@@ -347,6 +347,8 @@ fn environment_map_pdf_integrates_to_one_and_matches_its_samples() {
         for u in grid(16) {
             let ls = set.sample(&scene, &AT_ORIGIN, 0.5, u).unwrap();
             let (li, pdf) = set.environment_radiance(0, ls.wi);
+            // What a camera ray sees (no pdf taken) is the same radiance.
+            assert_eq!(set.escaped(ls.wi, None), li);
             assert!((pdf - ls.pdf).abs() <= 1e-3 * pdf, "{pdf} vs {}", ls.pdf);
             assert!((li - ls.li).length() <= 1e-3 * li.length().max(1e-3));
         }
