@@ -115,6 +115,9 @@ fn to_unit(x: u32) -> f32 {
 #[derive(Clone, Debug)]
 pub struct SobolSampler {
     seed: u64,
+    /// The pixel `pixel` is the key of (a path restarts the sampler for each of its pixel's
+    /// samples, twice each, and the key's two hashes were a tenth of a background sample).
+    at: Option<(u32, u32)>,
     pixel: u64,
     /// The sample index, bit-reversed (as every dimension's shuffle takes it).
     index_reversed: u32,
@@ -124,6 +127,7 @@ impl SobolSampler {
     pub fn new(seed: u64) -> Self {
         Self {
             seed,
+            at: None,
             pixel: 0,
             index_reversed: 0,
         }
@@ -146,7 +150,10 @@ impl SobolSampler {
 
 impl Sampler for SobolSampler {
     fn start(&mut self, x: u32, y: u32, index: u32) {
-        self.pixel = pixel_key(self.seed, x, y);
+        if self.at != Some((x, y)) {
+            self.at = Some((x, y));
+            self.pixel = pixel_key(self.seed, x, y);
+        }
         self.index_reversed = index.reverse_bits();
     }
 
