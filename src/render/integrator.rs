@@ -105,6 +105,20 @@ impl<'a> Integrator<'a> {
         }
     }
 
+    /// What a camera ray that meets no surface brings, as `li` finds it: the analytic lights in
+    /// front of it and the environment, with coverage 0 unless an analytic light is there. (No
+    /// sample dimension is drawn, so the caller need not restart its sampler: most of the image
+    /// of an object in front of an environment is such rays.)
+    pub fn missed(&self, camera_ray: &Ray) -> PathResult {
+        let le = self.lights.emitted(camera_ray, f32::INFINITY, None);
+        let l = le + self.lights.escaped(camera_ray.d, None);
+        let alpha = if le == Vec3::ZERO { 0.0 } else { 1.0 };
+        PathResult {
+            radiance: l.extend(alpha),
+            rays: 1,
+        }
+    }
+
     /// `li`, also noting what the path saw for the feature images (the same samples: the features
     /// only watch; but the last ray always takes the closest-hit query, since the features may
     /// need its hit, where `li` may test the emitters instead: radiance equal to the last bits).

@@ -303,14 +303,17 @@ impl Ctx<'_> {
                 .accel
                 .intersect_many(&cam[..n], &mut first[..n]);
             for ((&(i, offset, w), &ray), &hit) in takes.iter().zip(&cam).zip(&first).take(n) {
-                // The sampler is stateless per dimension: restarted, it draws the path's
-                // dimensions as if the camera ray had just been made.
-                sampler.start(x as u32, y as u32, i);
                 let mut path = PathFeatures::default();
                 let r = if FEATURES {
+                    sampler.start(x as u32, y as u32, i);
                     self.integrator
                         .li_features(ray, FirstHit::Traced(hit), sampler, &mut path)
+                } else if hit.is_none() {
+                    self.integrator.missed(&ray)
                 } else {
+                    // The sampler is stateless per dimension: restarted, it draws the path's
+                    // dimensions as if the camera ray had just been made.
+                    sampler.start(x as u32, y as u32, i);
                     self.integrator.li(ray, FirstHit::Traced(hit), sampler)
                 };
                 rays += r.rays as u64;
