@@ -111,7 +111,8 @@ impl<'a> Integrator<'a> {
     /// of an object in front of an environment is such rays.)
     pub fn missed(&self, camera_ray: &Ray) -> PathResult {
         let le = self.lights.emitted(camera_ray, f32::INFINITY, None);
-        let l = le + self.lights.escaped(camera_ray.d, None);
+        // Camera rays leave with unit directions (`RayCamera`).
+        let l = le + self.lights.escaped_unit(camera_ray.d, None);
         let alpha = if le == Vec3::ZERO { 0.0 } else { 1.0 };
         PathResult {
             radiance: l.extend(alpha),

@@ -417,7 +417,12 @@ impl LightSet {
     /// Radiance from the environments in direction `d` of a ray that left the scene, weighted as in
     /// `emitted`.
     pub fn escaped(&self, d: Vec3, prev: Option<(f32, LightContext)>) -> Vec3 {
-        let d = d.normalize_or_zero();
+        self.escaped_unit(d.normalize_or_zero(), prev)
+    }
+
+    /// `escaped` for a direction already of unit length (a camera ray's), which it spares the
+    /// normalisation's square root and division (a seventh of a background sample).
+    pub fn escaped_unit(&self, d: Vec3, prev: Option<(f32, LightContext)>) -> Vec3 {
         let mut l = Vec3::ZERO;
         for &i in &self.environments {
             let i = i as usize;
