@@ -1,5 +1,5 @@
 //! Inverse trigonometry without libm's calls: `acos` and `atan2` as short polynomials, for the
-//! per-ray lookups of environment maps (libm's pair was a sixth of an environment-lit render).
+//! per-ray lookups of environment maps (libm's took 15% of a render of the sky alone).
 //!
 //! Error bounds (against f64, tested below): `acos` within 5e-7 rad over [-1, 1]; `atan2` within
 //! 3e-7 rad: two ulps of pi, where libm's f32 results are within half of one. An environment
