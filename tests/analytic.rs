@@ -362,3 +362,58 @@ fn last_ray_finds_few_emitters_as_the_closest_hit_does() {
         }
     }
 }
+
+/// A camera ray that meets nothing takes `Integrator::missed`, a short path; it must bring exactly
+/// what the whole path would: the mapped environment everywhere, plus a rect light where the ray
+/// passes through it (and then full coverage).
+#[test]
+fn missed_camera_rays_bring_what_the_whole_path_does() {
+    use glint::render::{FirstHit, Integrator};
+    use glint::sample::{AnySampler, Sampler, SamplerKind};
+    use glint::scene::features::Features;
+    let (w, h) = (64usize, 32usize);
+    let pixels = (0..w * h)
+        .map(|i| Vec3::new((i % w) as f32 / w as f32, (i / w) as f32 / h as f32, 0.5) * 3.0)
+        .collect();
+    let scene = Arc::new(Scene {
+        lights: vec![
+            Light::Environment {
+                radiance: Vec3::splat(0.7),
+                map: Some(Arc::new(EnvMap::new(w, h, pixels).unwrap())),
+            },
+            Light::Rect(RectLight {
+                corner: Vec3::new(-1.0, 3.0, -1.0),
+                edge_u: Vec3::new(2.0, 0.0, 0.0),
+                edge_v: Vec3::new(0.0, 0.0, 2.0),
+                radiance: Vec3::splat(5.0),
+            }),
+        ],
+        ..Default::default()
+    });
+    let camera = Camera::look_at(Vec3::ZERO, Vec3::Y, Vec3::Z, 1.0);
+    let accel = glint::accel::build(scene.clone(), Backend::Bvh).unwrap();
+    let features = Features::of(&scene, &camera);
+    let integrator = Integrator::new(&scene, accel.as_ref(), 5, &features, LightSampler::Power);
+    let mut sampler = AnySampler::new(SamplerKind::Sobol, 1, 1);
+    let (mut lit, mut unlit) = (0, 0);
+    for i in 0..2000u32 {
+        let t = i as f32 * 0.618_034;
+        let d = Vec3::new((t * 7.0).sin(), (t * 3.0).cos(), (t * 5.0).sin()).normalize();
+        let ray = glint::geometry::Ray::new(Vec3::ZERO, d);
+        sampler.start(i % 7, i / 7, i);
+        let whole = integrator.li(ray, FirstHit::Traced(None), &mut sampler);
+        let short = integrator.missed(&ray);
+        assert_eq!(whole.radiance, short.radiance, "direction {d}");
+        assert_eq!(whole.rays, short.rays);
+        if short.radiance.w == 1.0 {
+            lit += 1;
+        } else {
+            unlit += 1;
+        }
+    }
+    // Both kinds of ray were asked about.
+    assert!(
+        lit > 20 && unlit > 20,
+        "{lit} through the light, {unlit} past it"
+    );
+}
