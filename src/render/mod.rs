@@ -304,17 +304,18 @@ impl Ctx<'_> {
                 .intersect_many(&cam[..n], &mut first[..n]);
             for ((&(i, offset, w), &ray), &hit) in takes.iter().zip(&cam).zip(&first).take(n) {
                 let mut path = PathFeatures::default();
-                let r = if FEATURES {
-                    sampler.start(x as u32, y as u32, i);
-                    self.integrator
-                        .li_features(ray, FirstHit::Traced(hit), sampler, &mut path)
-                } else if hit.is_none() {
+                let r = if !FEATURES && hit.is_none() {
                     self.integrator.missed(&ray)
                 } else {
                     // The sampler is stateless per dimension: restarted, it draws the path's
                     // dimensions as if the camera ray had just been made.
                     sampler.start(x as u32, y as u32, i);
-                    self.integrator.li(ray, FirstHit::Traced(hit), sampler)
+                    let first = FirstHit::Traced(hit);
+                    if FEATURES {
+                        self.integrator.li_features(ray, first, sampler, &mut path)
+                    } else {
+                        self.integrator.li(ray, first, sampler)
+                    }
                 };
                 rays += r.rays as u64;
                 // A non-finite sample would poison the pixel: count it as black.

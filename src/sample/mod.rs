@@ -194,8 +194,28 @@ impl Sampler for AnySampler {
 }
 
 /// A 64-bit key for (seed, pixel): what decorrelates pixels from each other.
-pub(crate) fn pixel_key(seed: u64, x: u32, y: u32) -> u64 {
+fn pixel_key(seed: u64, x: u32, y: u32) -> u64 {
     mix64(seed ^ mix64(((x as u64) << 32 | y as u64) ^ 0x9E37_79B9_7F4A_7C15))
+}
+
+/// The key of the pixel a sampler is in, hashed when the sampler moves to another pixel rather
+/// than at every restart (a render restarts it twice a sample, and the two hashes were a tenth of
+/// a sample that meets only the environment).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct PixelKey {
+    at: Option<(u32, u32)>,
+    key: u64,
+}
+
+impl PixelKey {
+    /// The key of pixel (x, y) under `seed` (one sampler keeps one seed).
+    pub fn of(&mut self, seed: u64, x: u32, y: u32) -> u64 {
+        if self.at != Some((x, y)) {
+            self.at = Some((x, y));
+            self.key = pixel_key(seed, x, y);
+        }
+        self.key
+    }
 }
 
 /// 24 random bits of a hash as a float in [0, 1).

@@ -5,7 +5,7 @@
 
 use glam::Vec2;
 
-use super::{pixel_key, Dim, Sampler};
+use super::{Dim, PixelKey, Sampler};
 use crate::geometry::mix64;
 
 /// Generator matrices (as direction numbers, most significant bit first) of Sobol dimensions 0 and 1.
@@ -115,9 +115,7 @@ fn to_unit(x: u32) -> f32 {
 #[derive(Clone, Debug)]
 pub struct SobolSampler {
     seed: u64,
-    /// The pixel `pixel` is the key of (a path restarts the sampler for each of its pixel's
-    /// samples, twice each, and the key's two hashes were a tenth of a background sample).
-    at: Option<(u32, u32)>,
+    keys: PixelKey,
     pixel: u64,
     /// The sample index, bit-reversed (as every dimension's shuffle takes it).
     index_reversed: u32,
@@ -127,7 +125,7 @@ impl SobolSampler {
     pub fn new(seed: u64) -> Self {
         Self {
             seed,
-            at: None,
+            keys: PixelKey::default(),
             pixel: 0,
             index_reversed: 0,
         }
@@ -150,10 +148,7 @@ impl SobolSampler {
 
 impl Sampler for SobolSampler {
     fn start(&mut self, x: u32, y: u32, index: u32) {
-        if self.at != Some((x, y)) {
-            self.at = Some((x, y));
-            self.pixel = pixel_key(self.seed, x, y);
-        }
+        self.pixel = self.keys.of(self.seed, x, y);
         self.index_reversed = index.reverse_bits();
     }
 

@@ -4,7 +4,7 @@
 
 use glam::Vec2;
 
-use super::{pixel_key, unit_float, Dim, Sampler, ONE_MINUS_EPS};
+use super::{unit_float, Dim, PixelKey, Sampler, ONE_MINUS_EPS};
 use crate::geometry::mix64;
 
 #[derive(Clone, Debug)]
@@ -13,6 +13,7 @@ pub struct StratifiedSampler {
     /// Strata per pass: `nx * ny` samples.
     nx: u32,
     ny: u32,
+    keys: PixelKey,
     pixel: u64,
     /// The sample's stratum slot within its pass, and the pass.
     slot: u32,
@@ -32,6 +33,7 @@ impl StratifiedSampler {
             seed,
             nx,
             ny: n / nx,
+            keys: PixelKey::default(),
             pixel: 0,
             slot: 0,
             pass: 0,
@@ -61,7 +63,7 @@ impl StratifiedSampler {
 
 impl Sampler for StratifiedSampler {
     fn start(&mut self, x: u32, y: u32, index: u32) {
-        self.pixel = pixel_key(self.seed, x, y);
+        self.pixel = self.keys.of(self.seed, x, y);
         self.slot = index % self.n();
         self.pass = index / self.n();
         self.index = index;

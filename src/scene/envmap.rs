@@ -14,6 +14,7 @@ use std::sync::Arc;
 
 use glam::{Mat3, Vec2, Vec3};
 
+use super::texture::wrap_index;
 use super::LoadError;
 use crate::geometry::inverse_trig;
 
@@ -106,16 +107,8 @@ impl EnvMap {
 
     /// The pixel (column, row) holding `uv`.
     pub fn pixel_of(&self, uv: Vec2) -> (usize, usize) {
-        let w = self.width as isize;
-        let x = (uv.x * self.width as f32) as isize;
-        // u wraps around; it is in [0, 1] but for rounding, so a step back or forth does it
-        // without an integer division (`rem_euclid` for anything further out).
-        let x = match x {
-            _ if (0..w).contains(&x) => x,
-            _ if (w..2 * w).contains(&x) => x - w,
-            _ if (-w..0).contains(&x) => x + w,
-            _ => x.rem_euclid(w),
-        } as usize;
+        // u wraps around.
+        let x = wrap_index((uv.x * self.width as f32) as i64, self.width as i64) as usize;
         let y = ((uv.y * self.height as f32) as usize).min(self.height - 1);
         (x, y)
     }

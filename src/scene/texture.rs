@@ -13,15 +13,30 @@ pub enum Wrap {
     MirroredRepeat,
 }
 
+/// `i` modulo `n` (> 0) in `0..n`, as `rem_euclid`, without its integer division where `i` is
+/// within a period of the range, as texel coordinates nearly always are (textures' repeats, and
+/// environment maps' columns, where it was measured).
+pub(crate) fn wrap_index(i: i64, n: i64) -> i64 {
+    if (0..n).contains(&i) {
+        i
+    } else if (n..2 * n).contains(&i) {
+        i - n
+    } else if (-n..0).contains(&i) {
+        i + n
+    } else {
+        i.rem_euclid(n)
+    }
+}
+
 impl Wrap {
     /// Maps an integer texel coordinate into `0..n`.
     fn index(self, i: i64, n: usize) -> usize {
         let n = n as i64;
         let k = match self {
-            Wrap::Repeat => i.rem_euclid(n),
+            Wrap::Repeat => wrap_index(i, n),
             Wrap::ClampToEdge => i.clamp(0, n - 1),
             Wrap::MirroredRepeat => {
-                let m = i.rem_euclid(2 * n);
+                let m = wrap_index(i, 2 * n);
                 if m < n {
                     m
                 } else {
@@ -186,6 +201,24 @@ mod tests {
         assert_eq!(checker(Wrap::ClampToEdge).sample(u).x, 1.0);
         assert_eq!(checker(Wrap::MirroredRepeat).sample(u).x, 1.0);
         assert_eq!(Wrap::MirroredRepeat.index(-1, 4), 0);
+        for n in [1i64, 3, 4, 2048] {
+            for i in [
+                -5 * n - 1,
+                -n - 1,
+                -n,
+                -1,
+                0,
+                1,
+                n - 1,
+                n,
+                2 * n - 1,
+                2 * n,
+                7 * n + 2,
+            ] {
+                assert_eq!(wrap_index(i, n), i.rem_euclid(n), "{i} mod {n}");
+            }
+        }
+        assert_eq!(wrap_index(i64::MIN, 5), i64::MIN.rem_euclid(5));
         assert_eq!(Wrap::MirroredRepeat.index(4, 4), 3);
         assert_eq!(Wrap::Repeat.index(-1, 4), 3);
     }
