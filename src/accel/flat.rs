@@ -4,7 +4,7 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use crate::geometry::triangle::Hits4;
+use crate::geometry::triangle::Hits;
 use crate::geometry::{Hit, Ray};
 use crate::scene::Scene;
 
@@ -65,7 +65,7 @@ impl TriId {
 #[inline(always)]
 pub fn take_lanes(
     any: bool,
-    h: &Hits4,
+    h: &Hits,
     mut mask: u32,
     id_of: impl Fn(usize) -> TriId,
     scene: &Scene,

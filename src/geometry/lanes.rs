@@ -12,7 +12,7 @@ pub trait Lanes:
     Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self>
 {
     /// A lane mask (true or false per lane).
-    type Mask: Copy;
+    type Mask: LaneMask;
     /// The number of lanes.
     const N: usize;
     fn splat(x: f32) -> Self;
@@ -29,10 +29,34 @@ pub trait Lanes:
     fn lt(self, o: Self) -> Self::Mask;
     fn le(self, o: Self) -> Self::Mask;
     fn gt(self, o: Self) -> Self::Mask;
+    fn eq(self, o: Self) -> Self::Mask;
     /// Bit `l` set where lane `l` of `m` is true.
     fn bits(m: Self::Mask) -> u32;
     /// `a` where `m` is true, `b` elsewhere.
     fn select(m: Self::Mask, a: Self, b: Self) -> Self;
+}
+
+/// The logic of lane masks.
+pub trait LaneMask: Copy {
+    fn or(self, o: Self) -> Self;
+    fn and(self, o: Self) -> Self;
+    /// `self && !o` per lane.
+    fn and_not(self, o: Self) -> Self;
+}
+
+impl LaneMask for M4 {
+    #[inline(always)]
+    fn or(self, o: Self) -> Self {
+        M4::or(self, o)
+    }
+    #[inline(always)]
+    fn and(self, o: Self) -> Self {
+        M4::and(self, o)
+    }
+    #[inline(always)]
+    fn and_not(self, o: Self) -> Self {
+        M4::and_not(self, o)
+    }
 }
 
 impl Lanes for F4 {
@@ -79,6 +103,10 @@ impl Lanes for F4 {
         F4::gt(self, o)
     }
     #[inline(always)]
+    fn eq(self, o: Self) -> M4 {
+        F4::eq(self, o)
+    }
+    #[inline(always)]
     fn bits(m: M4) -> u32 {
         m.bits()
     }
@@ -97,7 +125,7 @@ pub use avx::{F8, M8};
 mod avx {
     use std::arch::x86_64::*;
 
-    use super::{Lanes, F4, M4};
+    use super::{LaneMask, Lanes, F4, M4};
 
     #[derive(Clone, Copy)]
     #[repr(transparent)]
@@ -149,6 +177,21 @@ mod avx {
     binop!(Mul, mul, _mm256_mul_ps);
     binop!(Div, div, _mm256_div_ps);
 
+    impl LaneMask for M8 {
+        #[inline(always)]
+        fn or(self, o: Self) -> Self {
+            Self(unsafe { _mm256_or_ps(self.0, o.0) })
+        }
+        #[inline(always)]
+        fn and(self, o: Self) -> Self {
+            Self(unsafe { _mm256_and_ps(self.0, o.0) })
+        }
+        #[inline(always)]
+        fn and_not(self, o: Self) -> Self {
+            Self(unsafe { _mm256_andnot_ps(o.0, self.0) })
+        }
+    }
+
     impl Lanes for F8 {
         type Mask = M8;
         const N: usize = 8;
@@ -194,6 +237,10 @@ mod avx {
         #[inline(always)]
         fn gt(self, o: Self) -> M8 {
             M8(unsafe { _mm256_cmp_ps::<_CMP_GT_OQ>(self.0, o.0) })
+        }
+        #[inline(always)]
+        fn eq(self, o: Self) -> M8 {
+            M8(unsafe { _mm256_cmp_ps::<_CMP_EQ_OQ>(self.0, o.0) })
         }
         #[inline(always)]
         fn bits(m: M8) -> u32 {

@@ -5,6 +5,9 @@
 use glam::Vec3;
 
 use super::f4::F4;
+#[cfg(target_arch = "x86_64")]
+use super::lanes::F8;
+use super::lanes::{LaneMask, Lanes};
 
 /// Per-ray constants of the watertight test: the axis permutation and shear that map the ray onto +Z.
 #[derive(Clone, Copy, Debug)]
@@ -217,6 +220,91 @@ mod tests {
 }
 
 #[cfg(test)]
+mod packet_tests {
+    use super::*;
+
+    /// Each lane of a group test, as `(t, u, v)` bits where it hits.
+    fn lanes(h: &Hits, n: usize) -> Vec<Option<[u32; 3]>> {
+        (0..n)
+            .map(|l| (h.mask >> l & 1 == 1).then(|| [h.t[l], h.u[l], h.v[l]].map(f32::to_bits)))
+            .collect()
+    }
+
+    /// Both packets at once in eight AVX lanes.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    fn pair(o: Vec3, sh: &RayShear, packets: &[Tri4; 2], t_max: f32) -> Hits {
+        intersect_packets::<F8, _>(o, sh, packets, 0.0, t_max)
+    }
+
+    /// Every lane of `intersect4`, and of the eight-lane test of two packets, gives the scalar
+    /// test's bits: on random triangles around the ray, and on rays through a shared vertex and
+    /// along edges (exact zero edge functions, the lane-by-lane path), with some lanes unused.
+    #[test]
+    fn packet_lanes_match_the_scalar_test_bit_for_bit() {
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 40) as f32 / (1u64 << 24) as f32 - 0.5
+        };
+        let grid = |i: i32, j: i32| Vec3::new(i as f32 * 0.25, j as f32 * 0.25, 0.0);
+        let mut groups = 0;
+        let mut hits = 0;
+        for round in 0..4000 {
+            let (o, d) = if round % 2 == 0 {
+                let d = Vec3::new(next(), next(), next() - 0.7).normalize();
+                (Vec3::new(next(), next(), 1.0 + next()), d)
+            } else {
+                // Straight down onto a grid corner or edge: edge functions of exactly zero.
+                let (i, j) = ((round / 2 % 5) as i32, (round / 10 % 5) as i32);
+                let at = grid(i, j) + Vec3::new(0.125 * (round / 50 % 2) as f32, 0.0, 0.0);
+                (at + Vec3::Z, -Vec3::Z)
+            };
+            let sh = RayShear::new(d);
+            let used = 1 + round % 8;
+            let tris: Vec<[Vec3; 3]> = (0..used)
+                .map(|k| {
+                    if round % 2 == 0 {
+                        [0, 1, 2].map(|_| Vec3::new(next(), next(), next() * 0.2))
+                    } else {
+                        let (i, j) = ((k % 4) as i32, (k / 4) as i32);
+                        [grid(i, j), grid(i + 1, j), grid(i + 1, j + 1)]
+                    }
+                })
+                .collect();
+            let packets = [
+                Tri4::new(&tris[..used.min(4)]),
+                Tri4::new(&tris[used.min(4)..]),
+            ];
+            let t_max = if round % 3 == 0 { 1.2 } else { f32::INFINITY };
+            let want: Vec<_> = (0..8)
+                .map(|l| {
+                    let t = tris.get(l)?;
+                    let h = intersect(o, &sh, t[0], t[1], t[2], 0.0, t_max)?;
+                    Some([h.t, h.u, h.v].map(f32::to_bits))
+                })
+                .collect();
+            let fours: Vec<_> = packets
+                .iter()
+                .flat_map(|p| lanes(&intersect4(o, &sh, p, 0.0, t_max), 4))
+                .collect();
+            assert_eq!(fours, want, "four lanes, round {round}");
+            #[cfg(target_arch = "x86_64")]
+            if std::arch::is_x86_feature_detected!("avx") {
+                // SAFETY: the CPU has AVX (checked just above).
+                let h = unsafe { pair(o, &sh, &packets, t_max) };
+                assert_eq!(lanes(&h, 8), want, "eight lanes, round {round}");
+            }
+            groups += 1;
+            hits += want.iter().flatten().count();
+        }
+        assert!(hits > groups / 5, "{hits} hits in {groups} groups");
+    }
+}
+
+#[cfg(test)]
 mod direction_tests {
     use super::*;
 
@@ -253,6 +341,12 @@ pub struct Tri4 {
     pub p: [[[f32; 4]; 3]; 3],
 }
 
+impl AsRef<Tri4> for Tri4 {
+    fn as_ref(&self) -> &Tri4 {
+        self
+    }
+}
+
 impl Tri4 {
     pub fn new(tris: &[[Vec3; 3]]) -> Self {
         assert!(tris.len() <= 4);
@@ -285,84 +379,148 @@ impl Tri4 {
     }
 }
 
-/// Hits of up to four triangles: a bit per lane that hit (`mask`), and per lane the distance and
-/// barycentrics (meaningful only where `mask` is set).
+/// Hits of a group of triangles (one packet of four, or two side by side): a bit per lane that hit
+/// (`mask`), and per lane the distance and barycentrics (meaningful only where `mask` is set).
 #[derive(Clone, Copy, Debug)]
-pub struct Hits4 {
+pub struct Hits {
     pub mask: u32,
-    pub t: [f32; 4],
-    pub u: [f32; 4],
-    pub v: [f32; 4],
+    pub t: [f32; 8],
+    pub u: [f32; 8],
+    pub v: [f32; 8],
+}
+
+/// Lanes that hold a whole number of packets, tested together: `F4` one, `F8` two.
+pub trait PacketLanes: Lanes {
+    /// Packets per group.
+    const PACKETS: usize = Self::N / 4;
+    /// Coordinate `axis` of vertex `vertex` of the `PACKETS` packets at the start of `packets`.
+    fn coord<T: AsRef<Tri4>>(packets: &[T], vertex: usize, axis: usize) -> Self;
+}
+
+impl PacketLanes for F4 {
+    #[inline(always)]
+    fn coord<T: AsRef<Tri4>>(packets: &[T], vertex: usize, axis: usize) -> Self {
+        F4::load(&packets[0].as_ref().p[vertex][axis])
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+impl PacketLanes for F8 {
+    #[inline(always)]
+    fn coord<T: AsRef<Tri4>>(packets: &[T], vertex: usize, axis: usize) -> Self {
+        let [lo, hi] = &packets[..2] else {
+            unreachable!("two packets")
+        };
+        let (lo, hi) = (&lo.as_ref().p[vertex][axis], &hi.as_ref().p[vertex][axis]);
+        F8::halves(F4::load(lo), F4::load(hi))
+    }
 }
 
 /// The watertight test of `intersect` on four triangles at once: the same operations per lane (so
 /// both give bit-identical hits), on four lanes at a time. A lane with an edge function of exactly
 /// zero (a ray through an edge or vertex) takes the scalar path, with its double-precision retry.
 #[inline(always)]
-pub fn intersect4(o: Vec3, sh: &RayShear, tri: &Tri4, t_min: f32, t_max: f32) -> Hits4 {
-    let o = o.to_array();
+pub fn intersect4(o: Vec3, sh: &RayShear, tri: &Tri4, t_min: f32, t_max: f32) -> Hits {
+    intersect_packets::<F4, _>(o, sh, std::slice::from_ref(tri), t_min, t_max)
+}
+
+/// `intersect4` on the `L::PACKETS` packets at the start of `packets` at once (lane `4k + l`:
+/// packet `k`, lane `l`), with the same bits in each lane at either width. `L` must be usable here
+/// (`F8`: in code compiled for AVX).
+#[inline(always)]
+pub fn intersect_packets<L: PacketLanes, T: AsRef<Tri4>>(
+    o: Vec3,
+    sh: &RayShear,
+    packets: &[T],
+    t_min: f32,
+    t_max: f32,
+) -> Hits {
+    let oa = o.to_array();
     let (kx, ky, kz) = (sh.kx, sh.ky, sh.kz);
-    let rel = |vertex: usize, axis: usize| F4::load(&tri.p[vertex][axis]) - F4::splat(o[axis]);
-    let (sx, sy, sz) = (F4::splat(sh.sx), F4::splat(sh.sy), F4::splat(sh.sz));
-    let (az, bz, cz) = (rel(0, kz), rel(1, kz), rel(2, kz));
-    let ax = rel(0, kx) - sx * az;
-    let ay = rel(0, ky) - sy * az;
-    let bx = rel(1, kx) - sx * bz;
-    let by = rel(1, ky) - sy * bz;
-    let cx = rel(2, kx) - sx * cz;
-    let cy = rel(2, ky) - sy * cz;
+    let (sx, sy, sz) = (L::splat(sh.sx), L::splat(sh.sy), L::splat(sh.sz));
+    // No closure here: one that LLVM left out of line would not be compiled for AVX.
+    #[inline(always)]
+    fn rel<L: PacketLanes, T: AsRef<Tri4>>(p: &[T], o: &[f32; 3], vertex: usize, axis: usize) -> L {
+        L::coord(p, vertex, axis) - L::splat(o[axis])
+    }
+    let p = packets;
+    let (az, bz, cz) = (
+        rel::<L, T>(p, &oa, 0, kz),
+        rel(p, &oa, 1, kz),
+        rel(p, &oa, 2, kz),
+    );
+    let ax = rel::<L, T>(p, &oa, 0, kx) - sx * az;
+    let ay = rel::<L, T>(p, &oa, 0, ky) - sy * az;
+    let bx = rel::<L, T>(p, &oa, 1, kx) - sx * bz;
+    let by = rel::<L, T>(p, &oa, 1, ky) - sy * bz;
+    let cx = rel::<L, T>(p, &oa, 2, kx) - sx * cz;
+    let cy = rel::<L, T>(p, &oa, 2, ky) - sy * cz;
     let u = cx * by - cy * bx;
     let v = ax * cy - ay * cx;
     let w = bx * ay - by * ax;
-    let zero = F4::splat(0.0);
-    if u.eq(zero).or(v.eq(zero)).or(w.eq(zero)).bits() != 0 {
-        return intersect4_lanes(o, sh, tri, t_min, t_max);
+    let zero = L::splat(0.0);
+    if L::bits(u.eq(zero).or(v.eq(zero)).or(w.eq(zero))) != 0 {
+        return intersect_lanes(oa, sh, &packets[..L::PACKETS], t_min, t_max);
     }
     let t_scaled = u * (sz * az) + v * (sz * bz) + w * (sz * cz);
     let neg = u.lt(zero).or(v.lt(zero)).or(w.lt(zero));
     let pos = u.gt(zero).or(v.gt(zero)).or(w.gt(zero));
     let det = u + v + w;
-    let inv = F4::splat(1.0) / det;
+    let inv = L::splat(1.0) / det;
     let t = t_scaled * inv;
     let ok = t
-        .gt(F4::splat(t_min))
-        .and(t.lt(F4::splat(t_max)))
+        .gt(L::splat(t_min))
+        .and(t.lt(L::splat(t_max)))
         .and_not(neg.and(pos))
         .and_not(det.eq(zero));
-    Hits4 {
-        mask: ok.bits(),
-        t: t.to_array(),
-        u: (v * inv).to_array(),
-        v: (w * inv).to_array(),
-    }
+    let mut out = Hits {
+        mask: L::bits(ok),
+        t: [0.0; 8],
+        u: [0.0; 8],
+        v: [0.0; 8],
+    };
+    t.store(&mut out.t);
+    (v * inv).store(&mut out.u);
+    (w * inv).store(&mut out.v);
+    out
 }
 
-/// `intersect4` lane by lane, for packets where some edge function is exactly zero.
+/// `intersect_packets` lane by lane, for groups where some edge function is exactly zero.
 #[cold]
 #[inline(never)]
-fn intersect4_lanes(o: [f32; 3], sh: &RayShear, tri: &Tri4, t_min: f32, t_max: f32) -> Hits4 {
-    let mut out = Hits4 {
+fn intersect_lanes<T: AsRef<Tri4>>(
+    o: [f32; 3],
+    sh: &RayShear,
+    packets: &[T],
+    t_min: f32,
+    t_max: f32,
+) -> Hits {
+    let mut out = Hits {
         mask: 0,
-        t: [f32::INFINITY; 4],
-        u: [0.0; 4],
-        v: [0.0; 4],
+        t: [f32::INFINITY; 8],
+        u: [0.0; 8],
+        v: [0.0; 8],
     };
-    let k = |vertex: usize, l: usize| {
-        let p = &tri.p[vertex];
-        [
-            p[sh.kx][l] - o[sh.kx],
-            p[sh.ky][l] - o[sh.ky],
-            p[sh.kz][l] - o[sh.kz],
-        ]
-    };
-    for l in 0..4 {
-        let s = Sheared::new(sh, k(0, l), k(1, l), k(2, l));
-        let e = s.edges();
-        if let Some(h) = s.finish(sh, e, s.t_scaled(sh, e), t_min, t_max) {
-            out.mask |= 1 << l;
-            out.t[l] = h.t;
-            out.u[l] = h.u;
-            out.v[l] = h.v;
+    for (k, tri) in packets.iter().enumerate() {
+        let tri = tri.as_ref();
+        let at = |vertex: usize, l: usize| {
+            let p = &tri.p[vertex];
+            [
+                p[sh.kx][l] - o[sh.kx],
+                p[sh.ky][l] - o[sh.ky],
+                p[sh.kz][l] - o[sh.kz],
+            ]
+        };
+        for l in 0..4 {
+            let s = Sheared::new(sh, at(0, l), at(1, l), at(2, l));
+            let e = s.edges();
+            if let Some(h) = s.finish(sh, e, s.t_scaled(sh, e), t_min, t_max) {
+                let lane = 4 * k + l;
+                out.mask |= 1 << lane;
+                out.t[lane] = h.t;
+                out.u[lane] = h.u;
+                out.v[lane] = h.v;
+            }
         }
     }
     out
