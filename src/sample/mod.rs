@@ -164,7 +164,7 @@ impl AnySampler {
         match kind {
             SamplerKind::Random => AnySampler::Random(RandomSampler::new(seed)),
             SamplerKind::Stratified => AnySampler::Stratified(StratifiedSampler::new(seed, spp)),
-            SamplerKind::Sobol => AnySampler::Sobol(SobolSampler::new(seed)),
+            SamplerKind::Sobol => AnySampler::Sobol(SobolSampler::new(seed, spp)),
         }
     }
 }

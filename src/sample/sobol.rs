@@ -1,10 +1,11 @@
 //! Owen-scrambled Sobol points (Burley 2020, "Practical Hash-based Owen Scrambling"): the first two
 //! Sobol dimensions (a (0,2)-sequence) with nested uniform scrambling by a hash, and for padding every
-//! named dimension (pair) takes its own shuffle of the sample index and its own scramble seeds, hashed
-//! from (seed, pixel, dimension), like pbrt's `PaddedSobolSampler`.
+//! named dimension (pair) takes its own random permutation of the sample indices of its pass and its
+//! own scramble seeds, hashed from (seed, pixel, dimension), like pbrt's `PaddedSobolSampler`.
 
 use glam::Vec2;
 
+use super::stratified::permutation_element;
 use super::{Dim, PixelKey, Sampler};
 use crate::geometry::mix64;
 
@@ -115,28 +116,44 @@ fn to_unit(x: u32) -> f32 {
 #[derive(Clone, Debug)]
 pub struct SobolSampler {
     seed: u64,
+    /// Samples a pixel takes per pass: the indices that each dimension's permutation shuffles.
+    pass: u32,
     keys: PixelKey,
     pixel: u64,
-    /// The sample index, bit-reversed (as every dimension's shuffle takes it).
-    index_reversed: u32,
+    /// The sample's place in its pass, and the index its pass starts at.
+    slot: u32,
+    first: u32,
+    /// Mixed into the permutations' seeds, so that each pass pairs dimensions anew.
+    pass_key: u64,
 }
 
 impl SobolSampler {
-    pub fn new(seed: u64) -> Self {
+    /// `pass`: the samples a pixel takes per pass (at least 1).
+    pub fn new(seed: u64, pass: u32) -> Self {
         Self {
             seed,
+            pass: pass.max(1),
             keys: PixelKey::default(),
             pixel: 0,
-            index_reversed: 0,
+            slot: 0,
+            first: 0,
+            pass_key: 0,
         }
     }
 
     /// Scrambled values of the shuffled point in Sobol dimensions 0 and 1 for flat dimension `d`.
+    ///
+    /// The shuffle is a random permutation of the pass's indices (Kensler's, as the stratified
+    /// sampler's), not Burley's nested scramble of the index: that one maps the indices alike
+    /// modulo 2^k onto indices alike modulo 2^k for every k, whatever its seed, so the sub-nets of
+    /// any two dimension pairs (the points whose indices share their low bits) were paired with
+    /// each other. On helmet-env, whose noise is the first vertex's sun glints (pixel position and
+    /// BSDF sample together), sigma was 1.190 against 0.995 now (64 spp x 48 seeds).
     fn point(&self, d: u32, both: bool) -> (u32, u32) {
         let h = mix64(self.pixel ^ dimension_key(d));
-        // owen_scramble(index) and owen_scramble(sobol_u32(.., 0)), whose reversals cancel.
-        let shuffled = laine_karras(self.index_reversed, h as u32).reverse_bits();
-        let x = laine_karras(shuffled, (h >> 32) as u32).reverse_bits();
+        let shuffled =
+            self.first + permutation_element(self.slot, self.pass, (h ^ self.pass_key) as u32);
+        let x = owen_scramble(sobol_u32(shuffled, 0), (h >> 32) as u32);
         let y = if both {
             owen_scramble(sobol_u32(shuffled, 1), mix64(h) as u32)
         } else {
@@ -149,7 +166,13 @@ impl SobolSampler {
 impl Sampler for SobolSampler {
     fn start(&mut self, x: u32, y: u32, index: u32) {
         self.pixel = self.keys.of(self.seed, x, y);
-        self.index_reversed = index.reverse_bits();
+        self.slot = index % self.pass;
+        self.first = index - self.slot;
+        self.pass_key = if self.first == 0 {
+            0
+        } else {
+            mix64(self.first as u64)
+        };
     }
 
     fn get_1d(&mut self, dim: Dim, bounce: u32) -> f32 {
@@ -222,7 +245,7 @@ mod tests {
     #[test]
     fn sobol_has_lower_star_discrepancy_than_random() {
         for (dim, bounce) in [(Dim::Pixel, 0), (Dim::Light, 2)] {
-            let sobol = mean_discrepancy(&mut SobolSampler::new(3), dim, bounce);
+            let sobol = mean_discrepancy(&mut SobolSampler::new(3, 64), dim, bounce);
             let random = mean_discrepancy(&mut RandomSampler::new(3), dim, bounce);
             let strat = mean_discrepancy(
                 &mut super::super::StratifiedSampler::new(3, 64),
@@ -244,7 +267,7 @@ mod tests {
     fn sobol_points_are_elementary_intervals() {
         // A scrambled (0,2)-sequence: any 16 consecutive-from-zero points put one in each of the
         // 16 cells of every 2^a x 2^b grid with a + b = 4.
-        let mut s = SobolSampler::new(11);
+        let mut s = SobolSampler::new(11, 16);
         s.start(4, 5, 0);
         let pts: Vec<Vec2> = (0..16)
             .map(|i| {
@@ -275,9 +298,77 @@ mod tests {
         }
     }
 
+    /// Every pass of a pixel is a whole (0,2)-net in each dimension pair, and passes differ.
+    #[test]
+    fn each_pass_is_a_net_of_its_own() {
+        let mut s = SobolSampler::new(5, 16);
+        let pass = |s: &mut SobolSampler, p: u32| -> Vec<Vec2> {
+            (0..16)
+                .map(|i| {
+                    s.start(2, 9, 16 * p + i);
+                    s.get_2d(Dim::Light, 1)
+                })
+                .collect()
+        };
+        let (first, second) = (pass(&mut s, 0), pass(&mut s, 1));
+        for pts in [&first, &second] {
+            for a in 0..=4u32 {
+                let (gx, gy) = (1u32 << a, 1u32 << (4 - a));
+                let mut cells = vec![0; 16];
+                for p in pts.iter() {
+                    cells[((p.y * gy as f32) as u32 * gx + (p.x * gx as f32) as u32) as usize] += 1;
+                }
+                assert!(cells.iter().all(|&c| c == 1), "{gx}x{gy}: {cells:?}");
+            }
+        }
+        assert_ne!(first, second);
+    }
+
+    /// The variance (times the sample count) of 2,000 pixels' 64-sample estimates of a 4D step,
+    /// 1 where the pixel position's and the first bounce's BSDF sample's coordinates sum below
+    /// 1.7, with the BSDF sample from `other`, its samples in a random order (the pixel's own
+    /// sampler when `None`).
+    fn step_variance(s: &mut SobolSampler, mut other: Option<&mut SobolSampler>) -> f64 {
+        let mut est = Vec::new();
+        for px in 0..2000u32 {
+            let (x, y) = (px % 97, px / 97);
+            let mut hits = 0;
+            for i in 0..64 {
+                s.start(x, y, i);
+                let p = s.get_2d(Dim::Pixel, 0);
+                let q = match other.as_deref_mut() {
+                    Some(o) => {
+                        // A random pairing of the two samplers' samples.
+                        o.start(x, y, permutation_element(i, 64, mix64(px as u64) as u32));
+                        o.get_2d(Dim::Bsdf, 0)
+                    }
+                    None => s.get_2d(Dim::Bsdf, 0),
+                };
+                hits += (p.x + p.y + q.x + q.y < 1.7) as u32;
+            }
+            est.push(hits as f64 / 64.0);
+        }
+        let m = est.iter().sum::<f64>() / est.len() as f64;
+        64.0 * est.iter().map(|e| (e - m) * (e - m)).sum::<f64>() / est.len() as f64
+    }
+
+    /// A pixel's dimensions are as good as independent of one another: an integrand of the pixel
+    /// position and the BSDF sample together has no more variance than with the BSDF sample drawn
+    /// by another sampler, paired at random. Burley's nested shuffle of the index measured 0.103
+    /// against 0.080 here (it paired the dimensions' sub-nets); now 0.076.
+    #[test]
+    fn dimensions_are_as_good_as_independent() {
+        let own = step_variance(&mut SobolSampler::new(7, 64), None);
+        let independent = step_variance(
+            &mut SobolSampler::new(7, 64),
+            Some(&mut SobolSampler::new(1_000_003, 64)),
+        );
+        assert!(own < 1.1 * independent, "{own} against {independent}");
+    }
+
     #[test]
     fn pixels_are_decorrelated() {
-        let mut s = SobolSampler::new(0);
+        let mut s = SobolSampler::new(0, 16);
         s.start(0, 0, 0);
         let a = s.get_2d(Dim::Pixel, 0);
         s.start(1, 0, 0);
