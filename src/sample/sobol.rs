@@ -69,6 +69,52 @@ pub fn sobol_u32_reference(mut index: u32, dim: usize) -> u32 {
     x
 }
 
+/// Direction numbers (most significant bit first) of Sobol dimensions 2 and 3: primitive
+/// polynomials x^2 + x + 1 (m = 1, 3) and x^3 + x + 1 (m = 1, 3, 1), Joe & Kuo's initial numbers.
+const DIRECTIONS_23: [[u32; 32]; 2] = {
+    let mut d = [[0u32; 32]; 2];
+    let mut m = [[0u64; 33]; 2];
+    m[0][1] = 1;
+    m[0][2] = 3;
+    m[1][1] = 1;
+    m[1][2] = 3;
+    m[1][3] = 1;
+    let mut k = 3;
+    while k <= 32 {
+        m[0][k] = (2 * m[0][k - 1]) ^ (4 * m[0][k - 2]) ^ m[0][k - 2];
+        k += 1;
+    }
+    let mut k = 4;
+    while k <= 32 {
+        m[1][k] = (4 * m[1][k - 2]) ^ (8 * m[1][k - 3]) ^ m[1][k - 3];
+        k += 1;
+    }
+    let mut j = 0;
+    while j < 2 {
+        let mut k = 1;
+        while k <= 32 {
+            d[j][k - 1] = (m[j][k] << (32 - k)) as u32;
+            k += 1;
+        }
+        j += 1;
+    }
+    d
+};
+
+/// Sobol dimension 2 or 3 (`j` = 0 or 1) of `index`, unscrambled.
+fn sobol_u32_23(mut index: u32, j: usize) -> u32 {
+    let mut x = 0;
+    let mut b = 0;
+    while index != 0 {
+        if index & 1 != 0 {
+            x ^= DIRECTIONS_23[j][b];
+        }
+        index >>= 1;
+        b += 1;
+    }
+    x
+}
+
 /// Nested uniform (Owen) scrambling of a 32-bit fixed-point value: reverse the bits, apply a hash in
 /// which every bit depends only on lower bits (Laine-Karras style, with Vegdahl's constants), reverse back.
 pub fn owen_scramble(x: u32, seed: u32) -> u32 {
@@ -164,6 +210,30 @@ impl SobolSampler {
     }
 }
 
+impl SobolSampler {
+    /// A bounce's light and BSDF samples are one 4D point (Sobol dimensions 0-1 and 2-3 of one
+    /// shuffled index, each coordinate scrambled on its own), as Cycles' tabulated Sobol draws
+    /// them: both estimate the same light (MIS), so stratifying them jointly helps where each
+    /// alone is poor. helmet-env 256 spp (its sun glints through rough metal): sigma 1.081 -> 0.919
+    /// (seeds 1-40) and 1.103 -> 0.976 (41-72); at 64 spp x 48, 0.995 -> 1.084; bunny-cornell and
+    /// many-emitters unchanged (0.1548 / 0.1549 at 128 x 8, 0.4018 / 0.4019 at 32 x 8).
+    fn light_or_bsdf(&self, dim: Dim, bounce: u32) -> Vec2 {
+        let h = mix64(self.pixel ^ dimension_key(Dim::Light.index(bounce)));
+        let shuffled =
+            self.first + permutation_element(self.slot, self.pass, (h ^ self.pass_key) as u32);
+        let (a, b) = if dim == Dim::Light {
+            (sobol_u32(shuffled, 0), sobol_u32(shuffled, 1))
+        } else {
+            (sobol_u32_23(shuffled, 0), sobol_u32_23(shuffled, 1))
+        };
+        let own = mix64(self.pixel ^ dimension_key(dim.index(bounce)));
+        Vec2::new(
+            to_unit(owen_scramble(a, (own >> 32) as u32)),
+            to_unit(owen_scramble(b, mix64(own) as u32)),
+        )
+    }
+}
+
 impl Sampler for SobolSampler {
     fn start(&mut self, x: u32, y: u32, index: u32) {
         self.pixel = self.keys.of(self.seed, x, y);
@@ -181,6 +251,9 @@ impl Sampler for SobolSampler {
     }
 
     fn get_2d(&mut self, dim: Dim, bounce: u32) -> Vec2 {
+        if matches!(dim, Dim::Light | Dim::Bsdf) {
+            return self.light_or_bsdf(dim, bounce);
+        }
         let (x, y) = self.point(dim.index(bounce), true);
         Vec2::new(to_unit(x), to_unit(y))
     }
@@ -365,6 +438,52 @@ mod tests {
             Some(&mut SobolSampler::new(1_000_003, 64)),
         );
         assert!(own < 1.1 * independent, "{own} against {independent}");
+    }
+
+    /// Sobol dimensions 2 and 3 in index order (the published sequence, which lists them in Gray
+    /// code order: 0, 0.5, 0.25, 0.75, 0.625, 0.125, 0.875, 0.375 and 0, 0.5, 0.25, 0.75, 0.875,
+    /// 0.375, 0.625, 0.125).
+    #[test]
+    fn dimensions_2_and_3_are_sobol() {
+        let want = [
+            [0.0, 0.5, 0.75, 0.25, 0.375, 0.875, 0.625, 0.125],
+            [0.0, 0.5, 0.75, 0.25, 0.125, 0.625, 0.875, 0.375],
+        ];
+        for (j, w) in want.iter().enumerate() {
+            for (i, &x) in w.iter().enumerate() {
+                assert_eq!(
+                    sobol_u32_23(i as u32, j) as f64 / 4294967296.0,
+                    x,
+                    "{j} {i}"
+                );
+            }
+        }
+    }
+
+    /// A bounce's light and BSDF samples are one 4D point set: over a pass of 64, every pair of
+    /// their four coordinates puts 4 samples in each cell of a 4 x 4 grid (a (t,6,2)-net with
+    /// t <= 2; paired at random, some cells would hold other counts).
+    #[test]
+    fn light_and_bsdf_samples_are_stratified_together() {
+        let mut s = SobolSampler::new(9, 64);
+        for px in 0..4 {
+            let pts: Vec<[f32; 4]> = (0..64)
+                .map(|i| {
+                    s.start(px, 7, i);
+                    let (l, b) = (s.get_2d(Dim::Light, 1), s.get_2d(Dim::Bsdf, 1));
+                    [l.x, l.y, b.x, b.y]
+                })
+                .collect();
+            for a in 0..4 {
+                for b in a + 1..4 {
+                    let mut cells = [0; 16];
+                    for p in &pts {
+                        cells[(p[a] * 4.0) as usize * 4 + (p[b] * 4.0) as usize] += 1;
+                    }
+                    assert!(cells.iter().all(|&c| c == 4), "{px}: {a} {b}: {cells:?}");
+                }
+            }
+        }
     }
 
     #[test]
