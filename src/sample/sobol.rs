@@ -37,10 +37,10 @@ const fn directions() -> [[u32; 32]; 2] {
 /// (Lucas), a subset-sum transform of five masked shifts. (Shuffled indices use all 32 bits, so
 /// a loop over the direction numbers would cost 32 unpredictable branches per value.)
 pub fn sobol_u32(index: u32, dim: usize) -> u32 {
-    if dim == 0 {
-        index.reverse_bits()
-    } else {
-        pascal(index).reverse_bits()
+    match dim {
+        0 => index.reverse_bits(),
+        1 => pascal(index).reverse_bits(),
+        _ => from_directions(index, &DIRECTIONS_23[dim - 2]),
     }
 }
 
@@ -56,12 +56,17 @@ fn pascal(mut x: u32) -> u32 {
 
 /// The same values from the direction numbers, one bit at a time (the definition; for tests).
 #[cfg(test)]
-pub fn sobol_u32_reference(mut index: u32, dim: usize) -> u32 {
+pub fn sobol_u32_reference(index: u32, dim: usize) -> u32 {
+    from_directions(index, &DIRECTIONS[dim])
+}
+
+/// The Sobol value of `index` for one dimension's direction numbers: the xor of those of its set bits.
+fn from_directions(mut index: u32, directions: &[u32; 32]) -> u32 {
     let mut x = 0;
     let mut b = 0;
     while index != 0 {
         if index & 1 != 0 {
-            x ^= DIRECTIONS[dim][b];
+            x ^= directions[b];
         }
         index >>= 1;
         b += 1;
@@ -100,20 +105,6 @@ const DIRECTIONS_23: [[u32; 32]; 2] = {
     }
     d
 };
-
-/// Sobol dimension 2 or 3 (`j` = 0 or 1) of `index`, unscrambled.
-fn sobol_u32_23(mut index: u32, j: usize) -> u32 {
-    let mut x = 0;
-    let mut b = 0;
-    while index != 0 {
-        if index & 1 != 0 {
-            x ^= DIRECTIONS_23[j][b];
-        }
-        index >>= 1;
-        b += 1;
-    }
-    x
-}
 
 /// Nested uniform (Owen) scrambling of a 32-bit fixed-point value: reverse the bits, apply a hash in
 /// which every bit depends only on lower bits (Laine-Karras style, with Vegdahl's constants), reverse back.
@@ -187,7 +178,15 @@ impl SobolSampler {
         }
     }
 
-    /// Scrambled values of the shuffled point in Sobol dimensions 0 and 1 for flat dimension `d`.
+    /// Scrambled values in Sobol dimensions `first_dim` and `first_dim + 1` of the sample index
+    /// shuffled by seed `shuffle`, scrambled by seeds from `own` (both `hash`es of flat dimensions).
+    ///
+    /// A bounce's light and BSDF samples are one 4D point (dimensions 0-1 and 2-3 of one shuffled
+    /// index, each coordinate scrambled on its own), as Cycles' tabulated Sobol draws them: both
+    /// estimate the same light (MIS), so stratifying them jointly helps where each alone is poor.
+    /// helmet-env 256 spp (its sun glints through rough metal): sigma 1.081 -> 0.919 (seeds 1-40)
+    /// and 1.103 -> 0.976 (41-72); 128 x 40 1.051 -> 1.011; 64 x 48 0.995 -> 1.084; bunny-cornell
+    /// and many-emitters unchanged (0.1548 / 0.1549 at 128 x 8, 0.4018 / 0.4019 at 32 x 8).
     ///
     /// The shuffle is a random permutation of the pass's indices (Kensler's, as the stratified
     /// sampler's), not Burley's nested scramble of the index: that one maps the indices alike
@@ -196,41 +195,21 @@ impl SobolSampler {
     /// each other. On helmet-env, whose noise is the first vertex's sun glints (pixel position and
     /// BSDF sample together), sigma was 1.190 against 0.995 now at 64 spp (48 seeds), 1.092
     /// against 1.081 at 256 (40 seeds); bunny-cornell 0.1567 against 0.1548 (128 spp, 8 seeds).
-    fn point(&self, d: u32, both: bool) -> (u32, u32) {
-        let h = mix64(self.pixel ^ dimension_key(d));
-        let shuffled =
-            self.first + permutation_element(self.slot, self.pass, (h ^ self.pass_key) as u32);
-        let x = owen_scramble(sobol_u32(shuffled, 0), (h >> 32) as u32);
+    fn point(&self, shuffle: u64, own: u64, first_dim: usize, both: bool) -> (u32, u32) {
+        let shuffled = self.first
+            + permutation_element(self.slot, self.pass, (shuffle ^ self.pass_key) as u32);
+        let x = owen_scramble(sobol_u32(shuffled, first_dim), (own >> 32) as u32);
         let y = if both {
-            owen_scramble(sobol_u32(shuffled, 1), mix64(h) as u32)
+            owen_scramble(sobol_u32(shuffled, first_dim + 1), mix64(own) as u32)
         } else {
             0
         };
         (x, y)
     }
-}
 
-impl SobolSampler {
-    /// A bounce's light and BSDF samples are one 4D point (Sobol dimensions 0-1 and 2-3 of one
-    /// shuffled index, each coordinate scrambled on its own), as Cycles' tabulated Sobol draws
-    /// them: both estimate the same light (MIS), so stratifying them jointly helps where each
-    /// alone is poor. helmet-env 256 spp (its sun glints through rough metal): sigma 1.081 -> 0.919
-    /// (seeds 1-40) and 1.103 -> 0.976 (41-72); at 64 spp x 48, 0.995 -> 1.084; bunny-cornell and
-    /// many-emitters unchanged (0.1548 / 0.1549 at 128 x 8, 0.4018 / 0.4019 at 32 x 8).
-    fn light_or_bsdf(&self, dim: Dim, bounce: u32) -> Vec2 {
-        let h = mix64(self.pixel ^ dimension_key(Dim::Light.index(bounce)));
-        let shuffled =
-            self.first + permutation_element(self.slot, self.pass, (h ^ self.pass_key) as u32);
-        let (a, b) = if dim == Dim::Light {
-            (sobol_u32(shuffled, 0), sobol_u32(shuffled, 1))
-        } else {
-            (sobol_u32_23(shuffled, 0), sobol_u32_23(shuffled, 1))
-        };
-        let own = mix64(self.pixel ^ dimension_key(dim.index(bounce)));
-        Vec2::new(
-            to_unit(owen_scramble(a, (own >> 32) as u32)),
-            to_unit(owen_scramble(b, mix64(own) as u32)),
-        )
+    /// The hash of flat dimension `d` for this pixel: its shuffle's and its scrambles' seeds.
+    fn hash(&self, d: u32) -> u64 {
+        mix64(self.pixel ^ dimension_key(d))
     }
 }
 
@@ -247,14 +226,19 @@ impl Sampler for SobolSampler {
     }
 
     fn get_1d(&mut self, dim: Dim, bounce: u32) -> f32 {
-        to_unit(self.point(dim.index(bounce), false).0)
+        let h = self.hash(dim.index(bounce));
+        to_unit(self.point(h, h, 0, false).0)
     }
 
     fn get_2d(&mut self, dim: Dim, bounce: u32) -> Vec2 {
-        if matches!(dim, Dim::Light | Dim::Bsdf) {
-            return self.light_or_bsdf(dim, bounce);
-        }
-        let (x, y) = self.point(dim.index(bounce), true);
+        let own = self.hash(dim.index(bounce));
+        // A bounce's BSDF sample is dimensions 2-3 of its light sample's shuffled index.
+        let (shuffle, first_dim) = if dim == Dim::Bsdf {
+            (self.hash(Dim::Light.index(bounce)), 2)
+        } else {
+            (own, 0)
+        };
+        let (x, y) = self.point(shuffle, own, first_dim, true);
         Vec2::new(to_unit(x), to_unit(y))
     }
 }
@@ -452,7 +436,7 @@ mod tests {
         for (j, w) in want.iter().enumerate() {
             for (i, &x) in w.iter().enumerate() {
                 assert_eq!(
-                    sobol_u32_23(i as u32, j) as f64 / 4294967296.0,
+                    sobol_u32(i as u32, j + 2) as f64 / 4294967296.0,
                     x,
                     "{j} {i}"
                 );
