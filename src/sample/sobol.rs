@@ -31,15 +31,21 @@ const fn directions() -> [[u32; 32]; 2] {
     d
 }
 
-/// The 32-bit value of Sobol point `index` in dimension `dim` (0 or 1), unscrambled, in closed
-/// form: dimension 0 is the bit reversal of the index; dimension 1's generator matrix is Pascal's
-/// triangle mod 2, so bit j of its reversed value is the parity of the index bits k with k ⊇ j
-/// (Lucas), a subset-sum transform of five masked shifts. (Shuffled indices use all 32 bits, so
-/// a loop over the direction numbers would cost 32 unpredictable branches per value.)
+/// The 32-bit value of Sobol point `index` in dimension `dim` (0 to 3), unscrambled. Dimensions 0
+/// and 1 in closed form: dimension 0 is the bit reversal of the index; dimension 1's generator
+/// matrix is Pascal's triangle mod 2, so bit j of its reversed value is the parity of the index
+/// bits k with k ⊇ j (Lucas), a subset-sum transform of five masked shifts. Dimensions 2 and 3 from
+/// per-byte tables. (A loop over the direction numbers branches on every bit of the index.)
 pub fn sobol_u32(index: u32, dim: usize) -> u32 {
+    sobol_reversed(index, dim).reverse_bits()
+}
+
+/// `sobol_u32` with its bits reversed, the form the Owen scramble works on (so that no value is
+/// reversed twice).
+fn sobol_reversed(index: u32, dim: usize) -> u32 {
     match dim {
-        0 => index.reverse_bits(),
-        1 => pascal(index).reverse_bits(),
+        0 => index,
+        1 => pascal(index),
         _ => {
             let t = &BYTE_TABLES_23[dim - 2];
             let b = index.to_le_bytes();
@@ -48,8 +54,8 @@ pub fn sobol_u32(index: u32, dim: usize) -> u32 {
     }
 }
 
-/// `from_directions` of dimensions 2 and 3 for each byte of the index on its own (the xor of
-/// the four is the whole value): a loop over the index's bits branched on each bit, and the
+/// `from_directions` of dimensions 2 and 3, bit-reversed, for each byte of the index on its own
+/// (the xor of the four is the whole value): a loop over the index's bits branched on each bit, and the
 /// shuffled indices' bits are random, so it mispredicted about every other bit (13% of the
 /// sampler's time on bunny-cornell).
 const BYTE_TABLES_23: [[[u32; 256]; 4]; 2] = {
@@ -64,7 +70,7 @@ const BYTE_TABLES_23: [[[u32; 256]; 4]; 2] = {
                 let mut bit = 0;
                 while bit < 8 {
                     if v >> bit & 1 != 0 {
-                        x ^= DIRECTIONS_23[d][8 * byte + bit];
+                        x ^= DIRECTIONS_23[d][8 * byte + bit].reverse_bits();
                     }
                     bit += 1;
                 }
@@ -237,9 +243,11 @@ impl SobolSampler {
     /// BSDF sample together), sigma was 1.190 against 0.995 now at 64 spp (48 seeds), 1.092
     /// against 1.081 at 256 (40 seeds); bunny-cornell 0.1567 against 0.1548 (128 spp, 8 seeds).
     fn point(&self, shuffled: u32, own: u64, first_dim: usize, both: bool) -> (u32, u32) {
-        let x = owen_scramble(sobol_u32(shuffled, first_dim), (own >> 32) as u32);
+        let scrambled =
+            |dim, seed| laine_karras(sobol_reversed(shuffled, dim), seed).reverse_bits();
+        let x = scrambled(first_dim, (own >> 32) as u32);
         let y = if both {
-            owen_scramble(sobol_u32(shuffled, first_dim + 1), mix64(own) as u32)
+            scrambled(first_dim + 1, mix64(own) as u32)
         } else {
             0
         };
