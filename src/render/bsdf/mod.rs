@@ -33,6 +33,7 @@ use crate::scene::ShadingModel;
 /// proportion to the weights, mixed with a tenth of a uniform choice among the lobes that carry
 /// at least `NEGLIGIBLE_SHARE` of the total, so that none of them is starved by a rough estimate;
 /// lobes below it keep their bare proportion.
+#[inline(always)]
 fn choice_probabilities(w: [f32; 3]) -> [f32; 3] {
     let total: f32 = w.iter().sum();
     let counts = |x: f32| x > NEGLIGIBLE_SHARE * total;
