@@ -47,7 +47,7 @@ fn sobol_reversed(index: u32, dim: usize) -> u32 {
         0 => index,
         1 => pascal(index),
         _ => {
-            let t = &BYTE_TABLES_23[dim - 2];
+            let t = &BYTE_TABLES[dim - 2];
             let b = index.to_le_bytes();
             t[0][b[0] as usize] ^ t[1][b[1] as usize] ^ t[2][b[2] as usize] ^ t[3][b[3] as usize]
         }
@@ -58,10 +58,10 @@ fn sobol_reversed(index: u32, dim: usize) -> u32 {
 /// (the xor of the four is the whole value): a loop over the index's bits branched on each bit, and the
 /// shuffled indices' bits are random, so it mispredicted about every other bit (13% of the
 /// sampler's time on bunny-cornell).
-const BYTE_TABLES_23: [[[u32; 256]; 4]; 2] = {
-    let mut t = [[[0u32; 256]; 4]; 2];
+const BYTE_TABLES: [[[u32; 256]; 4]; TABULATED] = {
+    let mut t = [[[0u32; 256]; 4]; TABULATED];
     let mut d = 0;
-    while d < 2 {
+    while d < TABULATED {
         let mut byte = 0;
         while byte < 4 {
             let mut v = 0;
@@ -70,7 +70,7 @@ const BYTE_TABLES_23: [[[u32; 256]; 4]; 2] = {
                 let mut bit = 0;
                 while bit < 8 {
                     if v >> bit & 1 != 0 {
-                        x ^= DIRECTIONS_23[d][8 * byte + bit].reverse_bits();
+                        x ^= DIRECTIONS_HIGH[d][8 * byte + bit].reverse_bits();
                     }
                     bit += 1;
                 }
@@ -99,7 +99,7 @@ fn pascal(mut x: u32) -> u32 {
 pub fn sobol_u32_reference(index: u32, dim: usize) -> u32 {
     match dim {
         0 | 1 => from_directions(index, &DIRECTIONS[dim]),
-        _ => from_directions(index, &DIRECTIONS_23[dim - 2]),
+        _ => from_directions(index, &DIRECTIONS_HIGH[dim - 2]),
     }
 }
 
@@ -118,37 +118,46 @@ fn from_directions(mut index: u32, directions: &[u32; 32]) -> u32 {
     x
 }
 
-/// Direction numbers (most significant bit first) of Sobol dimensions 2 and 3: primitive
-/// polynomials x^2 + x + 1 (m = 1, 3) and x^3 + x + 1 (m = 1, 3, 1), Joe & Kuo's initial numbers.
-const DIRECTIONS_23: [[u32; 32]; 2] = {
-    let mut d = [[0u32; 32]; 2];
-    let mut m = [[0u64; 33]; 2];
-    m[0][1] = 1;
-    m[0][2] = 3;
-    m[1][1] = 1;
-    m[1][2] = 3;
-    m[1][3] = 1;
-    let mut k = 3;
+/// Sobol dimensions past the closed-form two (a BSDF sample's, beside its partner's).
+const TABULATED: usize = 2;
+
+/// Direction numbers (most significant bit first) of Sobol dimensions 2 and 3, from Joe & Kuo's
+/// primitive polynomials (degree s, coefficients a) and initial numbers m: x^2 + x + 1 (m = 1, 3),
+/// x^3 + x + 1 (1, 3, 1). (Dimensions 4-5, x^3 + x^2 + 1 (1, 1, 1) and x^4 + x + 1 (1, 1, 3, 3),
+/// served the 6D trial that `partner` reports.)
+const DIRECTIONS_HIGH: [[u32; 32]; TABULATED] =
+    [joe_kuo(2, 1, [1, 3, 0, 0]), joe_kuo(3, 1, [1, 3, 1, 0])];
+
+/// The direction numbers of a dimension with primitive polynomial of degree `s` and inner
+/// coefficients `a` (a_1 as its highest bit), initial numbers `init[..s]`: Bratley and Fox's
+/// recurrence m_k = 2 a_1 m_(k-1) ^ 4 a_2 m_(k-2) ^ ... ^ 2^s m_(k-s) ^ m_(k-s).
+const fn joe_kuo(s: usize, a: u64, init: [u64; 4]) -> [u32; 32] {
+    let mut m = [0u64; 33];
+    let mut k = 1;
     while k <= 32 {
-        m[0][k] = (2 * m[0][k - 1]) ^ (4 * m[0][k - 2]) ^ m[0][k - 2];
+        m[k] = if k <= s {
+            init[k - 1]
+        } else {
+            let mut x = (m[k - s] << s) ^ m[k - s];
+            let mut j = 1;
+            while j < s {
+                if a >> (s - 1 - j) & 1 != 0 {
+                    x ^= m[k - j] << j;
+                }
+                j += 1;
+            }
+            x
+        };
         k += 1;
     }
-    let mut k = 4;
+    let mut d = [0u32; 32];
+    let mut k = 1;
     while k <= 32 {
-        m[1][k] = (4 * m[1][k - 2]) ^ (8 * m[1][k - 3]) ^ m[1][k - 3];
+        d[k - 1] = (m[k] << (32 - k)) as u32;
         k += 1;
-    }
-    let mut j = 0;
-    while j < 2 {
-        let mut k = 1;
-        while k <= 32 {
-            d[j][k - 1] = (m[j][k] << (32 - k)) as u32;
-            k += 1;
-        }
-        j += 1;
     }
     d
-};
+}
 
 /// Nested uniform (Owen) scrambling of a 32-bit fixed-point value: reverse the bits, apply a hash in
 /// which every bit depends only on lower bits (Laine-Karras style, with Vegdahl's constants), reverse back.
@@ -168,6 +177,27 @@ fn laine_karras(mut v: u32, seed: u32) -> u32 {
 
 /// What a flat dimension's index is offset by before it is hashed.
 const DIMENSION_SALT: u64 = 0x6A09_E667_F3BC_C909;
+
+/// The 2D dimension whose shuffled index the BSDF sample at `bounce` shares, its Sobol dimensions
+/// 2-3 beside the partner's 0-1 (as Cycles' tabulated Sobol draws 4D sets): the pixel position
+/// at the camera's vertex, where it sets the normal and the point the BSDF sample leaves from;
+/// the bounce's light sample after it, where both estimate the same light (MIS).
+///
+/// Measured against the light sample as the partner at every bounce too (sigma, light -> pixel
+/// at the first vertex): helmet-env (its sun glinting through rough metal under a normal map)
+/// 256 x 24 seeds 0.938 -> 0.775 and 1.011 -> 0.806, 128 x 32 0.936 -> 0.845, 64 x 48 0.992 ->
+/// 0.917, 16 x 64 1.225 -> 1.201; bunny-cornell 128 x 8 0.1549 -> 0.1492; many-emitters 32 x 8
+/// 0.4019 -> 0.4017. The pixel, the BSDF and the light sample as one 6D point (dimensions 0-5)
+/// measured 0.817, the light sample in 2-3 and the BSDF sample in 4-5 0.830 (helmet-env 256 x 24,
+/// against 0.806). The light sample as partner at every bounce against independent sets:
+/// helmet-env 256 spp 1.081 -> 0.919, bunny-cornell and many-emitters unchanged.
+fn partner(bounce: u32) -> Dim {
+    if bounce == 0 {
+        Dim::Pixel
+    } else {
+        Dim::Light
+    }
+}
 
 /// The hash of a flat dimension that each pixel's key is mixed with, tabulated for the dimensions
 /// of the camera and the first 31 bounces (5 + 8 a bounce): a path draws a few dozen per sample.
@@ -206,8 +236,8 @@ pub struct SobolSampler {
     first: u32,
     /// Mixed into the permutations' seeds, so that each pass pairs dimensions anew.
     pass_key: u64,
-    /// The last light sample's bounce and shuffled index, which that bounce's BSDF sample shares.
-    light_index: Option<(u32, u32)>,
+    /// The flat dimension and shuffled index of the last sample that is a BSDF sample's `partner`.
+    partner_index: Option<(u32, u32)>,
 }
 
 impl SobolSampler {
@@ -221,19 +251,16 @@ impl SobolSampler {
             slot: 0,
             first: 0,
             pass_key: 0,
-            light_index: None,
+            partner_index: None,
         }
     }
 
     /// Scrambled values in Sobol dimensions `first_dim` and `first_dim + 1` of the `shuffled`
     /// sample index, scrambled by seeds from `own` (a `hash` of a flat dimension).
     ///
-    /// A bounce's light and BSDF samples are one 4D point (dimensions 0-1 and 2-3 of one shuffled
-    /// index, each coordinate scrambled on its own), as Cycles' tabulated Sobol draws them: both
-    /// estimate the same light (MIS), so stratifying them jointly helps where each alone is poor.
-    /// helmet-env 256 spp (its sun glints through rough metal): sigma 1.081 -> 0.919 (seeds 1-40)
-    /// and 1.103 -> 0.976 (41-72); 128 x 40 1.051 -> 1.011; 64 x 48 0.995 -> 1.084; bunny-cornell
-    /// and many-emitters unchanged (0.1548 / 0.1549 at 128 x 8, 0.4018 / 0.4019 at 32 x 8).
+    /// A BSDF sample is one 4D point with its `partner` (dimensions 2-3 beside the partner's 0-1
+    /// of one shuffled index, each coordinate scrambled on its own). See `partner` for which and
+    /// what it measured.
     ///
     /// The shuffle is a random permutation of the pass's indices (Kensler's, as the stratified
     /// sampler's), not Burley's nested scramble of the index: that one maps the indices alike
@@ -275,7 +302,7 @@ impl Sampler for SobolSampler {
         } else {
             mix64(self.first as u64)
         };
-        self.light_index = None;
+        self.partner_index = None;
     }
 
     fn get_1d(&mut self, dim: Dim, bounce: u32) -> f32 {
@@ -284,21 +311,20 @@ impl Sampler for SobolSampler {
     }
 
     fn get_2d(&mut self, dim: Dim, bounce: u32) -> Vec2 {
-        let own = self.hash(dim.index(bounce));
-        // A bounce's BSDF sample is dimensions 2-3 of its light sample's shuffled index (kept from
-        // the light sample when there was one: the integrator draws it first).
-        let (shuffled, first_dim) = match dim {
-            Dim::Bsdf => match self.light_index {
-                Some((b, shuffled)) if b == bounce => (shuffled, 2),
-                _ => (self.shuffled(self.hash(Dim::Light.index(bounce))), 2),
-            },
-            _ => {
-                let shuffled = self.shuffled(own);
-                if dim == Dim::Light {
-                    self.light_index = Some((bounce, shuffled));
-                }
-                (shuffled, 0)
+        let flat = dim.index(bounce);
+        let own = self.hash(flat);
+        let (shuffled, first_dim) = if dim == Dim::Bsdf {
+            let with = partner(bounce).index(bounce);
+            match self.partner_index {
+                Some((d, shuffled)) if d == with => (shuffled, 2),
+                _ => (self.shuffled(self.hash(with)), 2),
             }
+        } else {
+            let shuffled = self.shuffled(own);
+            if dim == partner(bounce) {
+                self.partner_index = Some((flat, shuffled));
+            }
+            (shuffled, 0)
         };
         let (x, y) = self.point(shuffled, own, first_dim, true);
         Vec2::new(to_unit(x), to_unit(y))
@@ -412,7 +438,7 @@ mod tests {
             x = x.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
             x
         })) {
-            for d in 0..4 {
+            for d in 0..2 + TABULATED {
                 assert_eq!(sobol_u32(i, d), sobol_u32_reference(i, d), "{i} {d}");
             }
         }
@@ -445,10 +471,10 @@ mod tests {
     }
 
     /// The variance (times the sample count) of 2,000 pixels' 64-sample estimates of a 4D step,
-    /// 1 where the pixel position's and the first bounce's BSDF sample's coordinates sum below
-    /// 1.7, with the BSDF sample from `other`, its samples in a random order (the pixel's own
+    /// 1 where the pixel position's and the sample `dim` at the first vertex's coordinates sum
+    /// below 1.7, with that sample from `other`, its samples in a random order (the pixel's own
     /// sampler when `None`).
-    fn step_variance(s: &mut SobolSampler, mut other: Option<&mut SobolSampler>) -> f64 {
+    fn step_variance(s: &mut SobolSampler, mut other: Option<&mut SobolSampler>, dim: Dim) -> f64 {
         let mut est = Vec::new();
         for px in 0..2000u32 {
             let (x, y) = (px % 97, px / 97);
@@ -460,9 +486,9 @@ mod tests {
                     Some(o) => {
                         // A random pairing of the two samplers' samples.
                         o.start(x, y, permutation_element(i, 64, mix64(px as u64) as u32));
-                        o.get_2d(Dim::Bsdf, 0)
+                        o.get_2d(dim, 0)
                     }
-                    None => s.get_2d(Dim::Bsdf, 0),
+                    None => s.get_2d(dim, 0),
                 };
                 hits += (p.x + p.y + q.x + q.y < 1.7) as u32;
             }
@@ -472,52 +498,72 @@ mod tests {
         64.0 * est.iter().map(|e| (e - m) * (e - m)).sum::<f64>() / est.len() as f64
     }
 
-    /// A pixel's dimensions are as good as independent of one another: an integrand of the pixel
-    /// position and the BSDF sample together has no more variance than with the BSDF sample drawn
-    /// by another sampler, paired at random. Burley's nested shuffle of the index measured 0.103
-    /// against 0.080 here (it paired the dimensions' sub-nets); now 0.076.
+    /// A pixel's dimensions that are not one point set are as good as independent of one
+    /// another: an integrand of the pixel position and the first light sample together has no
+    /// more variance than with the light sample drawn by another sampler, paired at random.
+    /// Burley's nested shuffle of the index measured 0.103 against 0.080 here (with the BSDF
+    /// sample, before it became the pixel's partner: it paired the dimensions' sub-nets).
     #[test]
     fn dimensions_are_as_good_as_independent() {
-        let own = step_variance(&mut SobolSampler::new(7, 64), None);
+        let own = step_variance(&mut SobolSampler::new(7, 64), None, Dim::Light);
         let independent = step_variance(
             &mut SobolSampler::new(7, 64),
             Some(&mut SobolSampler::new(1_000_003, 64)),
+            Dim::Light,
         );
         assert!(own < 1.1 * independent, "{own} against {independent}");
     }
 
-    /// Sobol dimensions 2 and 3 in index order (the published sequence, which lists them in Gray
-    /// code order: 0, 0.5, 0.25, 0.75, 0.625, 0.125, 0.875, 0.375 and 0, 0.5, 0.25, 0.75, 0.875,
-    /// 0.375, 0.625, 0.125).
+    /// The pixel position and the first BSDF sample are one 4D point set: the same integrand of
+    /// the two has well under the variance of a random pairing.
+    #[test]
+    fn the_pixel_and_the_first_bsdf_sample_are_stratified_together() {
+        let own = step_variance(&mut SobolSampler::new(7, 64), None, Dim::Bsdf);
+        let independent = step_variance(
+            &mut SobolSampler::new(7, 64),
+            Some(&mut SobolSampler::new(1_000_003, 64)),
+            Dim::Bsdf,
+        );
+        // 0.052 against 0.084; with the light sample as its partner, 0.076 against 0.080.
+        assert!(own < 0.75 * independent, "{own} against {independent}");
+    }
+
+    /// Sobol dimensions 2 and 3 in index order: the first 16 points in sixteenths, from SciPy's
+    /// unscrambled Sobol (Joe & Kuo's numbers) taken out of its Gray-code order.
     #[test]
     fn dimensions_2_and_3_are_sobol() {
         let want = [
-            [0.0, 0.5, 0.75, 0.25, 0.375, 0.875, 0.625, 0.125],
-            [0.0, 0.5, 0.75, 0.25, 0.125, 0.625, 0.875, 0.375],
+            [0, 8, 12, 4, 6, 14, 10, 2, 9, 1, 5, 13, 15, 7, 3, 11],
+            [0, 8, 12, 4, 2, 10, 14, 6, 5, 13, 9, 1, 7, 15, 11, 3],
         ];
         for (j, w) in want.iter().enumerate() {
             for (i, &x) in w.iter().enumerate() {
                 assert_eq!(
-                    sobol_u32(i as u32, j + 2) as f64 / 4294967296.0,
-                    x,
-                    "{j} {i}"
+                    sobol_u32(i as u32, j + 2),
+                    x << 28,
+                    "dimension {} point {i}",
+                    j + 2
                 );
             }
         }
     }
 
-    /// A bounce's light and BSDF samples are one 4D point set: over a pass of 64, every pair of
-    /// their four coordinates puts 4 samples in each cell of a 4 x 4 grid (a (t,6,2)-net with
-    /// t <= 2; paired at random, some cells would hold other counts).
+    /// A BSDF sample and its partner (the pixel position at the first vertex, the light sample
+    /// after it) are one 4D point set: over a pass of 64, every pair of their four coordinates
+    /// puts 4 samples in each cell of a 4 x 4 grid (a (t,6,2)-net with t <= 2; paired at random,
+    /// some cells would hold other counts).
     #[test]
-    fn light_and_bsdf_samples_are_stratified_together() {
+    fn bsdf_samples_are_stratified_with_their_partners() {
         let mut s = SobolSampler::new(9, 64);
-        for px in 0..4 {
+        for (px, bounce) in (0..4).flat_map(|px| [(px, 0), (px, 1), (px, 3)]) {
             let pts: Vec<[f32; 4]> = (0..64)
                 .map(|i| {
                     s.start(px, 7, i);
-                    let (l, b) = (s.get_2d(Dim::Light, 1), s.get_2d(Dim::Bsdf, 1));
-                    [l.x, l.y, b.x, b.y]
+                    let a = s.get_2d(partner(bounce), bounce);
+                    // The light sample between them at the first vertex, as the integrator draws.
+                    s.get_2d(Dim::Light, bounce);
+                    let b = s.get_2d(Dim::Bsdf, bounce);
+                    [a.x, a.y, b.x, b.y]
                 })
                 .collect();
             for a in 0..4 {
@@ -526,7 +572,10 @@ mod tests {
                     for p in &pts {
                         cells[(p[a] * 4.0) as usize * 4 + (p[b] * 4.0) as usize] += 1;
                     }
-                    assert!(cells.iter().all(|&c| c == 4), "{px}: {a} {b}: {cells:?}");
+                    assert!(
+                        cells.iter().all(|&c| c == 4),
+                        "{px} {bounce}: {a} {b}: {cells:?}"
+                    );
                 }
             }
         }
