@@ -297,11 +297,8 @@ impl Sampler for SobolSampler {
         self.pixel = self.keys.of(self.seed, x, y);
         self.slot = rem(index as u64, self.pass);
         self.first = index - self.slot;
-        self.pass_key = if self.first == 0 {
-            0
-        } else {
-            mix64(self.first as u64)
-        };
+        // The first pass's key is 0 (mix64 fixes 0).
+        self.pass_key = mix64(self.first as u64);
         self.partner_index = None;
     }
 
