@@ -254,13 +254,17 @@ impl LightSet {
             // two) are one light; the rest one each.
             let count = mesh.indices.len() as u32;
             let mut p = 0;
+            // The partner a triangle did not pair with, which is the next triangle.
+            let mut unpaired = None;
             while p < count {
-                let t = Triangle::new(scene, i as u32, p);
-                let quad = if mat.emissive_tex.is_none() && p + 1 < count {
-                    Quad::pair(&t, &Triangle::new(scene, i as u32, p + 1), mat.emissive)
-                } else {
-                    None
-                };
+                let t = unpaired
+                    .take()
+                    .unwrap_or_else(|| Triangle::new(scene, i as u32, p));
+                let partner = (mat.emissive_tex.is_none() && p + 1 < count)
+                    .then(|| Triangle::new(scene, i as u32, p + 1));
+                let quad = partner
+                    .as_ref()
+                    .and_then(|next| Quad::pair(&t, next, mat.emissive));
                 triangle_entry.push(entries.len() as u32);
                 if let Some(q) = quad {
                     triangle_entry.push(entries.len() as u32);
@@ -270,6 +274,7 @@ impl LightSet {
                 } else {
                     weights.push(t.power(scene, mat, mesh));
                     entries.push(Entry::Triangle(t));
+                    unpaired = partner;
                     p += 1;
                 }
             }
