@@ -137,6 +137,15 @@ mod tests {
     use super::*;
 
     #[test]
+    fn rem_is_the_remainder() {
+        for n in [1u32, 2, 3, 7, 64, 100, 128, 1 << 31, u32::MAX] {
+            for x in [0u64, 1, 63, 64, 65, 99, 1 << 40, u64::MAX - 5, u64::MAX] {
+                assert_eq!(rem(x, n) as u64, x % n as u64, "{x} % {n}");
+            }
+        }
+    }
+
+    #[test]
     fn permutation_is_a_bijection() {
         for n in [1u32, 2, 7, 16, 100] {
             for seed in [0u32, 1, 0xdead_beef] {
