@@ -576,6 +576,29 @@ mod tests {
         }
     }
 
+    /// A BSDF sample is the same whether or not its partner was drawn just before (the kept
+    /// shuffled index) and whatever else was drawn in between.
+    #[test]
+    fn bsdf_samples_do_not_depend_on_what_was_drawn_before() {
+        let mut s = SobolSampler::new(4, 32);
+        for i in 0..32 {
+            for bounce in 0..3 {
+                s.start(5, 6, i);
+                let alone = s.get_2d(Dim::Bsdf, bounce);
+                s.start(5, 6, i);
+                s.get_2d(partner(bounce), bounce);
+                let after_partner = s.get_2d(Dim::Bsdf, bounce);
+                s.start(5, 6, i);
+                s.get_2d(partner(bounce), bounce);
+                s.get_2d(Dim::Light, bounce + 1);
+                s.get_1d(Dim::BsdfLobe, bounce);
+                let after_others = s.get_2d(Dim::Bsdf, bounce);
+                assert_eq!(alone, after_partner, "{i} {bounce}");
+                assert_eq!(alone, after_others, "{i} {bounce}");
+            }
+        }
+    }
+
     #[test]
     fn pixels_are_decorrelated() {
         let mut s = SobolSampler::new(0, 16);
