@@ -1,7 +1,8 @@
 //! Owen-scrambled Sobol points (Burley 2020, "Practical Hash-based Owen Scrambling"): the first two
 //! Sobol dimensions (a (0,2)-sequence) with nested uniform scrambling by a hash, and for padding every
 //! named dimension (pair) takes its own random permutation of the sample indices of its pass and its
-//! own scramble seeds, hashed from (seed, pixel, dimension), like pbrt's `PaddedSobolSampler`.
+//! own scramble seeds, hashed from (seed, pixel, dimension), like pbrt's `PaddedSobolSampler`;
+//! a BSDF sample instead takes Sobol dimensions 2-3 of its `partner`'s shuffled index (a 4D point).
 
 use glam::Vec2;
 
@@ -267,7 +268,7 @@ impl SobolSampler {
     /// modulo 2^k onto indices alike modulo 2^k for every k, whatever its seed, so the sub-nets of
     /// any two dimension pairs (the points whose indices share their low bits) were paired with
     /// each other. On helmet-env, whose noise is the first vertex's sun glints (pixel position and
-    /// BSDF sample together), sigma was 1.190 against 0.995 now at 64 spp (48 seeds), 1.092
+    /// BSDF sample together), sigma was 1.190 against 0.995 with it at 64 spp (48 seeds), 1.092
     /// against 1.081 at 256 (40 seeds); bunny-cornell 0.1567 against 0.1548 (128 spp, 8 seeds).
     fn point(&self, shuffled: u32, own: u64, first_dim: usize, both: bool) -> (u32, u32) {
         let scrambled =
