@@ -21,7 +21,7 @@ use crate::geometry::mix64;
 /// The largest f32 below 1: where sample values (and numbers remapped from them) are clamped.
 pub const ONE_MINUS_EPS: f32 = 1.0 - f32::EPSILON / 2.0;
 
-pub use sobol::{owen_scramble, sobol_u32, SobolSampler};
+pub use sobol::SobolSampler;
 pub use stratified::{permutation_element, StratifiedSampler};
 
 /// The named sampling dimensions of one path. Camera dimensions come once per path; the others once
