@@ -15,7 +15,7 @@ use crate::film::{self, Display, Format, Image, ViewTransform};
 use crate::render::job::{
     Basics, CameraChoice, CameraRef, Environment, JobOptions, Overrides, RenderJob, Setup, View,
 };
-use crate::render::{AdaptiveMode, LightSampler, RenderOutput, RenderSettings};
+use crate::render::{AdaptiveMode, EmissionSplits, LightSampler, RenderOutput, RenderSettings};
 use crate::sample::SamplerKind;
 
 #[derive(clap::Args, Debug)]
@@ -66,6 +66,11 @@ pub struct RenderArgs {
     /// BVH from 64 lights on (emissive triangles count one each)
     #[arg(long, value_enum, default_value_t = LightSampler::Auto)]
     pub light_sampler: LightSampler,
+    /// Camera rays a path takes for the emission it sees directly, in pixels where emitters
+    /// (emissive or unlit surfaces, area lights) have edges: those edges are most of the noise
+    /// where small emitters are in view; 1 turns the search for edges off
+    #[arg(long, value_enum, default_value_t = EmissionSplits::default())]
+    pub emission_splits: EmissionSplits,
     /// Pixel reconstruction filter [default: gaussian]
     #[arg(long, value_enum)]
     pub filter: Option<FilterKind>,
@@ -134,6 +139,7 @@ impl RenderArgs {
                 max_spp: self.max_spp,
                 time_budget: self.time_budget,
                 light_sampler: self.light_sampler,
+                emission_splits: self.emission_splits,
                 ..RenderSettings::default()
             },
             view: View {
@@ -263,6 +269,12 @@ pub fn run(mut args: RenderArgs) -> Result<()> {
         ..job.settings.clone()
     };
     let out = job.render_with(&settings, &progress);
+    if args.verbose {
+        eprintln!(
+            "emission splits: {} pixels take {} camera rays a path",
+            out.stats.split_pixels, settings.emission_splits
+        );
+    }
     let denoised = denoiser
         .as_ref()
         .map(|d| DenoiseArgs::run(d, &out.image, out.features.as_ref()))

@@ -6,7 +6,7 @@ use glam::{Vec2, Vec3, Vec4};
 use super::features::PathFeatures;
 use super::light::{LightContext, LightSampler, LightSet};
 use super::offset::offset_ray_origin;
-use super::surface::SurfaceInteraction;
+use super::surface::{self, SurfaceInteraction};
 use crate::accel::Accel;
 use crate::geometry::{Hit, Ray};
 use crate::sample::mis::power_heuristic;
@@ -49,6 +49,20 @@ pub struct Integrator<'a> {
     pub thin_shadows: bool,
     /// The scene has alpha-tested geometry, whose stochastic transparency reads the rays' seeds.
     pub alpha_seeds: bool,
+}
+
+/// The radiance a camera ray finds before any bounce: from emitters (emissive and unlit surfaces,
+/// analytic lights) and from the environment.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Seen {
+    pub emitters: Vec3,
+    pub environment: Vec3,
+}
+
+impl Seen {
+    pub fn total(&self) -> Vec3 {
+        self.emitters + self.environment
+    }
 }
 
 /// Radiance along one camera ray, its coverage (alpha), and how many rays it took.
@@ -117,6 +131,24 @@ impl<'a> Integrator<'a> {
         PathResult {
             radiance: l.extend(alpha),
             rays: 1,
+        }
+    }
+
+    /// What camera ray `ray` (unit direction) with closest hit `hit` brings back before any
+    /// bounce, as `li` counts it; the companions of a split camera ray bring back this alone.
+    pub fn seen(&self, ray: &Ray, hit: Option<&Hit>) -> Seen {
+        let t_hit = hit.map_or(f32::INFINITY, |h| h.t);
+        let mut emitters = self.lights.emitted(ray, t_hit, None);
+        let environment = match hit {
+            Some(h) => {
+                emitters += surface::radiance_at(self.scene, h, ray);
+                Vec3::ZERO
+            }
+            None => self.lights.escaped_unit(ray.d, None),
+        };
+        Seen {
+            emitters,
+            environment,
         }
     }
 

@@ -3,6 +3,7 @@
 
 pub mod bsdf;
 pub mod camera;
+pub mod emission_split;
 pub mod feature_film;
 pub mod features;
 pub mod integrator;
@@ -20,9 +21,11 @@ use rayon::prelude::*;
 
 pub use crate::film::aov::FeatureImages;
 pub use camera::RayCamera;
+pub use emission_split::EmissionSplits;
 pub use integrator::{FirstHit, Integrator};
 pub use light::LightSampler;
 
+use emission_split::SplitPixels;
 use feature_film::{DepthAxis, FeatureAcc};
 use features::PathFeatures;
 
@@ -105,6 +108,9 @@ pub struct RenderSettings {
     pub feature_images: bool,
     /// How next-event estimation chooses among the lights.
     pub light_sampler: LightSampler,
+    /// Camera rays a path takes for the emission it sees directly, in pixels where emitters have
+    /// edges (`emission_split`).
+    pub emission_splits: EmissionSplits,
 }
 
 impl Default for RenderSettings {
@@ -128,6 +134,7 @@ impl Default for RenderSettings {
             sample_shard: None,
             feature_images: false,
             light_sampler: LightSampler::Auto,
+            emission_splits: EmissionSplits::default(),
         }
     }
 }
@@ -143,6 +150,8 @@ pub struct RenderStats {
     pub max_spp: u32,
     /// Sampling rounds (1 unless adaptive or time-budgeted).
     pub rounds: u32,
+    /// Pixels whose paths split their camera rays for the emission seen directly.
+    pub split_pixels: usize,
 }
 
 impl RenderStats {
@@ -233,6 +242,8 @@ struct Ctx<'a> {
     settings: &'a RenderSettings,
     pass: u32,
     axis: DepthAxis,
+    /// Where paths split their camera rays (none: nowhere).
+    splits: Option<SplitPixels>,
 }
 
 impl Ctx<'_> {
@@ -280,7 +291,7 @@ impl Ctx<'_> {
         while next < to {
             // The camera rays of up to `PACKET` of the pixel's samples, traced together (they are
             // coherent: Embree answers them as one packet); then each path goes on alone.
-            let mut takes = [(0u32, Vec2::ZERO, 0.0f32); PACKET];
+            let mut takes = [(0u32, Vec2::ZERO, 0.0f32, Vec2::ZERO); PACKET];
             let mut cam = [Ray::new(Vec3::ZERO, Vec3::Z); PACKET];
             let mut n = 0;
             while next < to && n < PACKET {
@@ -290,19 +301,27 @@ impl Ctx<'_> {
                     continue;
                 }
                 sampler.start(x as u32, y as u32, i);
-                let (offset, w) = self.filter.sample(sampler.get_2d(Dim::Pixel, 0));
+                let u = sampler.get_2d(Dim::Pixel, 0);
+                let (offset, w) = self.filter.sample(u);
                 let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
                 cam[n] = self
                     .integrator
                     .seeded(self.cam.generate(film, sampler), sampler);
-                takes[n] = (i, offset, w);
+                takes[n] = (i, offset, w, u);
                 n += 1;
             }
             let mut first = [None; PACKET];
             self.integrator
                 .accel
                 .intersect_many(&cam[..n], &mut first[..n]);
-            for ((&(i, offset, w), &ray), &hit) in takes.iter().zip(&cam).zip(&first).take(n) {
+            let mut split = [Vec3::ZERO; PACKET];
+            if self.splits.as_ref().is_some_and(|s| s.at(x, y)) {
+                rays +=
+                    self.split_emission(sampler, (x, y), &takes[..n], (&cam, &first), &mut split);
+            }
+            for (((&(i, offset, w, _), &ray), &hit), &split) in
+                takes.iter().zip(&cam).zip(&first).zip(&split).take(n)
+            {
                 let mut path = PathFeatures::default();
                 let r = if !FEATURES && hit.is_none() {
                     self.integrator.missed(&ray)
@@ -324,7 +343,9 @@ impl Ctx<'_> {
                 } else {
                     DVec4::ZERO
                 };
-                let v = l * w as f64;
+                let v = l * w as f64 + split.extend(0.0).as_dvec4();
+                // What the features see as the sample's radiance: its share of `v`.
+                let l = if w != 0.0 { v / w as f64 } else { l };
                 if FEATURES {
                     features.add(&path, l, w as f64, offset, &self.axis);
                 }
@@ -339,6 +360,56 @@ impl Ctx<'_> {
         acc.n = acc.n.max(to);
         acc.rays += rays;
         rays
+    }
+
+    /// For the camera rays `cam` (closest hits `first`) of the samples `takes` of pixel (x, y):
+    /// per sample, what its companions change of its weighted value (`emission_split`): the mean
+    /// weighted emission seen by the k rays, less the camera ray's own; returns the rays traced.
+    fn split_emission(
+        &self,
+        sampler: &mut AnySampler,
+        (x, y): (usize, usize),
+        takes: &[(u32, Vec2, f32, Vec2)],
+        (cam, first): (&[Ray; PACKET], &[Option<crate::geometry::Hit>; PACKET]),
+        out: &mut [Vec3; PACKET],
+    ) -> u64 {
+        const MOST: usize = PACKET * 15;
+        let k = self.settings.emission_splits.count();
+        let mut rays = [Ray::new(Vec3::ZERO, Vec3::Z); MOST];
+        let mut weights = [0.0f32; MOST];
+        let mut m = 0;
+        for &(i, _, _, u) in takes {
+            // The companions share the camera ray's lens position, time and seed (dimensions the
+            // restarted sampler draws again alike).
+            sampler.start(x as u32, y as u32, i);
+            for j in 1..k {
+                let (offset, w) = self.filter.sample(emission_split::companion(u, j));
+                let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
+                rays[m] = self
+                    .integrator
+                    .seeded(self.cam.generate(film, sampler), sampler);
+                weights[m] = w;
+                m += 1;
+            }
+        }
+        let mut hits = [None; MOST];
+        self.integrator
+            .accel
+            .intersect_many(&rays[..m], &mut hits[..m]);
+        for (q, &(_, _, w, _)) in takes.iter().enumerate() {
+            let own = w * self.integrator.seen(&cam[q], first[q].as_ref()).total();
+            let mut sum = own;
+            for c in q * (k - 1)..(q + 1) * (k - 1) {
+                sum += weights[c] * self.integrator.seen(&rays[c], hits[c].as_ref()).total();
+            }
+            let change = sum / k as f32 - own;
+            out[q] = if change.is_finite() {
+                change
+            } else {
+                Vec3::ZERO
+            };
+        }
+        m as u64
     }
 
     /// Whitted-style adaptive supersampling of one pixel over its corners; returns rays traced.
@@ -486,7 +557,7 @@ pub fn render_full(
     // Decided once: a static scene never draws a time, a pinhole never a lens position (RayCamera),
     // an opaque scene's shadow rays are plain occlusion queries (Integrator).
     let features = Features::of(scene, camera);
-    let ctx = Ctx {
+    let mut ctx = Ctx {
         integrator: Integrator::new(
             scene,
             accel,
@@ -499,7 +570,18 @@ pub fn render_full(
         settings,
         pass,
         axis: depth_axis(camera),
+        splits: None,
     };
+    // Only a scene whose camera may see emitters searches for their edges.
+    if settings.emission_splits != EmissionSplits::One
+        && features.emitting_surfaces
+        && adaptive != AdaptiveMode::Corners
+    {
+        // How many pixels past its own a pixel's filter takes samples from.
+        let reach = (ctx.filter.radius - 0.5).max(0.0).ceil() as usize;
+        let found = SplitPixels::find(&ctx.integrator, &ctx.cam, (w, h), reach);
+        ctx.splits = Some(found);
+    }
     // Rounds that sample only some pixels balance better over smaller tiles.
     let edge = if adaptive == AdaptiveMode::Variance || settings.time_budget.is_some() {
         TILE / 2
@@ -536,6 +618,7 @@ pub fn render_full(
     progress.finish_and_clear();
     let mut out = collect(&tiles, settings, rays.into_inner(), rounds);
     out.stats.seconds = start.elapsed().as_secs_f64();
+    out.stats.split_pixels = ctx.splits.as_ref().map_or(0, SplitPixels::count);
     out
 }
 
@@ -659,6 +742,7 @@ fn collect(tiles: &[Tile], settings: &RenderSettings, rays: u64, rounds: u32) ->
         min_spp,
         max_spp: spp.iter().copied().max().unwrap_or(0),
         rounds,
+        split_pixels: 0,
     };
     RenderOutput {
         image,

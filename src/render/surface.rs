@@ -48,6 +48,20 @@ pub fn emission(scene: &Scene, mat: &Material, uv: VertexAttrs) -> Vec3 {
     }
 }
 
+/// What the surface at `hit` sends back along `ray` by itself (`SurfaceInteraction::emission`),
+/// without building the interaction: camera rays that only look at emitters need nothing else.
+pub fn radiance_at(scene: &Scene, hit: &Hit, ray: &Ray) -> Vec3 {
+    if !SurfaceInteraction::can_emit(scene, hit) {
+        return Vec3::ZERO;
+    }
+    if hit.csg().is_some() {
+        return SurfaceInteraction::new(scene, hit, ray).emission;
+    }
+    let mesh = &scene.meshes[scene.instances[hit.inst as usize].mesh as usize];
+    let mat = &scene.materials[mesh.material as usize];
+    radiance(scene, mat, mesh.uv_at(hit.prim, hit.u, hit.v))
+}
+
 impl SurfaceInteraction {
     /// Whether the surface `hit` can have any emitted radiance (an emissive factor, or unlit): where
     /// not, a path's last vertex adds nothing and needs no interaction. CSG hits say yes.

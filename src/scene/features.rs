@@ -41,6 +41,8 @@ features! {
     emissive_triangles: "emissive triangles",
     /// Analytic sphere, disk and rectangle lights.
     area_lights: "area lights",
+    /// Surfaces or area lights a camera may see: camera rays split where their edges lie.
+    emitting_surfaces: "emitting surfaces",
     punctual_lights: "punctual lights",
     environment: "environment",
     /// An environment map, importance-sampled.
@@ -52,6 +54,12 @@ impl Features {
     pub fn of(scene: &Scene, camera: &Camera) -> Self {
         let mats = &scene.materials;
         let lights = &scene.lights;
+        let area_lights = lights.iter().any(|l| {
+            matches!(
+                l,
+                Light::Sphere { .. } | Light::Disk { .. } | Light::Rect { .. }
+            )
+        });
         Self {
             motion: scene.has_motion() || camera.motion.is_some(),
             lens: camera.lens.is_some_and(|l| l.radius > 0.0),
@@ -65,12 +73,8 @@ impl Features {
                 .instances
                 .iter()
                 .any(|i| scene.material_of_mesh(i.mesh).is_emissive()),
-            area_lights: lights.iter().any(|l| {
-                matches!(
-                    l,
-                    Light::Sphere { .. } | Light::Disk { .. } | Light::Rect { .. }
-                )
-            }),
+            area_lights,
+            emitting_surfaces: area_lights || mats.iter().any(|m| m.unlit || m.is_emissive()),
             punctual_lights: lights
                 .iter()
                 .any(|l| matches!(l, Light::Point(_) | Light::Spot(_) | Light::Directional(_))),

@@ -40,6 +40,14 @@ impl Environment {
         }
     }
 
+    /// Mean luminance over the sphere of directions (a constant's too, which `mean` leaves out).
+    pub fn mean_luminance(&self) -> f32 {
+        match self.map {
+            None => luminance(self.radiance),
+            Some(_) => self.mean,
+        }
+    }
+
     /// The environment's weight among the lights: its flux through `far_disk`, the area of the
     /// scene's bounding disk (irradiance on a plane is pi times the mean radiance over the sphere).
     pub fn power(&self, far_disk: f32) -> f32 {

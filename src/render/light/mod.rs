@@ -309,6 +309,18 @@ impl LightSet {
         self.entries.len() > 1 || self.uses_bvh()
     }
 
+    /// The environments' mean luminance over the sphere of directions (zero without one): about
+    /// what a white diffuse surface under them reflects.
+    pub fn environment_luminance(&self) -> f32 {
+        self.environments
+            .iter()
+            .map(|&i| match &self.entries[i as usize] {
+                Entry::Environment(e) => e.mean_luminance(),
+                _ => 0.0,
+            })
+            .sum()
+    }
+
     /// Whether the scene's only emitters are a few sampled emissive triangles, so that a ray that
     /// only looks for emitters can test them instead of asking for the closest hit
     /// (`nearest_emitter`).
