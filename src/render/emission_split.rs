@@ -1,5 +1,5 @@
 //! Camera-ray splitting for the emission seen directly: in pixels where an emitter's edge lies, each
-//! path's camera ray has companions at shifted pixel positions that bring back only what they see.
+//! path's camera ray has companions at other pixel positions that bring back only what they see.
 //!
 //! A path's value is what its camera ray sees (`Integrator::seen`) plus what its bounces bring. The
 //! first part is replaced by the mean over the camera ray and its k - 1 companions: each companion
@@ -7,7 +7,13 @@
 //! path's is), so the mean has the same expectation and the estimate stays unbiased. Where small
 //! emitters are seen directly their edges are most of the image's noise (many-emitters: 47% of the
 //! variance a sample), and a companion costs one coherent primary ray, not a path. Which pixels
-//! split is decided before sampling, from a fixed grid of rays, so it depends on no sample.
+//! split is decided before sampling, from a fixed lattice of rays, so it depends on no sample.
+//!
+//! The companions' positions: where the render is one pass of N samples, the pixel sequence's
+//! next passes (`Sampler::get_2d_extension`), so that the N samples and their companions are
+//! the first kN points of one Owen-scrambled Sobol sequence (many-emitters, 8 rays, 32 spp x 8:
+//! sigma 0.311 -> 0.301 against `companion`'s shifts; 128 x 6: 0.284 -> 0.278); otherwise (rounds,
+//! whose later passes take those points) `companion`.
 
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;

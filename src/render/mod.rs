@@ -244,6 +244,9 @@ struct Ctx<'a> {
     axis: DepthAxis,
     /// Where paths split their camera rays (none: nowhere).
     splits: Option<SplitPixels>,
+    /// The first pass is all the render's samples (no adaptive rounds, no time budget), so the
+    /// camera rays' companions may take the pixel sequence's points past it.
+    single_pass: bool,
 }
 
 impl Ctx<'_> {
@@ -383,7 +386,14 @@ impl Ctx<'_> {
             // restarted sampler draws again alike).
             sampler.start(x as u32, y as u32, i);
             for j in 1..k {
-                let (offset, w) = self.filter.sample(emission_split::companion(u, j));
+                // The sequence's next passes, where no later pass takes them: then the pixel's
+                // samples and their companions are one net.
+                let extended = self
+                    .single_pass
+                    .then(|| sampler.get_2d_extension(Dim::Pixel, 0, j as u32))
+                    .flatten();
+                let u = extended.unwrap_or_else(|| emission_split::companion(u, j));
+                let (offset, w) = self.filter.sample(u);
                 let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
                 rays[m] = self
                     .integrator
@@ -571,6 +581,7 @@ pub fn render_full(
         pass,
         axis: depth_axis(camera),
         splits: None,
+        single_pass: adaptive == AdaptiveMode::Off && settings.time_budget.is_none(),
     };
     // Only a scene whose camera may see emitters searches for their edges.
     if settings.emission_splits != EmissionSplits::One

@@ -82,6 +82,14 @@ pub trait Sampler {
     fn get_1d(&mut self, dim: Dim, bounce: u32) -> f32;
     fn get_2d(&mut self, dim: Dim, bounce: u32) -> Vec2;
 
+    /// Point `j` (from 1) of 2D dimension `dim`'s extension past the first pass, where the sampler
+    /// has one: with a pass of N samples, the pass's points and their extensions 1..k are the
+    /// first kN points of the dimension's sequence. For renders whose first pass is all their
+    /// samples (a later pass would take the same points).
+    fn get_2d_extension(&mut self, _dim: Dim, _bounce: u32, _j: u32) -> Option<Vec2> {
+        None
+    }
+
     /// 32 random bits for a ray seed (see `Ray::seed`).
     fn get_seed(&mut self, bounce: u32) -> u32 {
         (self.get_1d(Dim::Alpha, bounce) * 4_294_967_296.0) as u32
@@ -189,6 +197,13 @@ impl Sampler for AnySampler {
             AnySampler::Random(s) => s.get_2d(dim, bounce),
             AnySampler::Stratified(s) => s.get_2d(dim, bounce),
             AnySampler::Sobol(s) => s.get_2d(dim, bounce),
+        }
+    }
+    fn get_2d_extension(&mut self, dim: Dim, bounce: u32, j: u32) -> Option<Vec2> {
+        match self {
+            AnySampler::Random(s) => s.get_2d_extension(dim, bounce, j),
+            AnySampler::Stratified(s) => s.get_2d_extension(dim, bounce, j),
+            AnySampler::Sobol(s) => s.get_2d_extension(dim, bounce, j),
         }
     }
 }

@@ -300,6 +300,19 @@ impl Sampler for SobolSampler {
         let (x, y) = self.point(shuffled, own, first_dim, true);
         Vec2::new(to_unit(x), to_unit(y))
     }
+
+    /// The same scrambled sequence at the shuffled index plus `j` passes: over a first pass of
+    /// N = 2^m samples, the pass and extensions 1..2^a are the first 2^(m + a) points of an
+    /// Owen-scrambled (0, 2)-sequence, a (0, m + a, 2)-net.
+    fn get_2d_extension(&mut self, dim: Dim, bounce: u32, j: u32) -> Option<Vec2> {
+        if dim == Dim::Bsdf {
+            return None;
+        }
+        let own = self.hash(dim.index(bounce));
+        let index = self.shuffled(own).wrapping_add(j.wrapping_mul(self.pass));
+        let (x, y) = self.point(index, own, 0, true);
+        Some(Vec2::new(to_unit(x), to_unit(y)))
+    }
 }
 
 #[cfg(test)]
@@ -400,6 +413,46 @@ mod tests {
             }
             assert!(cells.iter().all(|&c| c == 1), "{gx}x{gy}: {cells:?}");
         }
+    }
+
+    /// A first pass of 16 samples and its extensions 1..8 are one (0, 7, 2)-net of 128 points
+    /// (one in each cell of every 2^a x 2^(7 - a) grid), whatever the shuffle; each extension alone
+    /// is a (0, 4, 2)-net too.
+    #[test]
+    fn a_pass_and_its_extensions_are_one_net() {
+        let nets = |pts: &[Vec2], m: u32| {
+            (0..=m).all(|a| {
+                let (gx, gy) = (1u32 << a, 1u32 << (m - a));
+                let mut cells = vec![0; 1 << m];
+                for p in pts {
+                    cells[((p.y * gy as f32) as u32 * gx + (p.x * gx as f32) as u32) as usize] += 1;
+                }
+                cells.iter().all(|&c| c == 1)
+            })
+        };
+        for (seed, (x, y)) in [(11, (4, 5)), (3, (0, 7)), (99, (250, 31))] {
+            let mut s = SobolSampler::new(seed, 16);
+            let mut all = Vec::new();
+            for j in 0..8 {
+                let ext: Vec<Vec2> = (0..16)
+                    .map(|i| {
+                        s.start(x, y, i);
+                        if j == 0 {
+                            s.get_2d(Dim::Pixel, 0)
+                        } else {
+                            s.get_2d_extension(Dim::Pixel, 0, j).expect("sobol extends")
+                        }
+                    })
+                    .collect();
+                assert!(nets(&ext, 4), "extension {j}");
+                all.extend(ext);
+            }
+            assert!(nets(&all, 7), "seed {seed}");
+        }
+        // The BSDF sample's dimensions are not a sequence of their own to extend.
+        let mut s = SobolSampler::new(1, 16);
+        s.start(0, 0, 0);
+        assert!(s.get_2d_extension(Dim::Bsdf, 0, 1).is_none());
     }
 
     #[test]
