@@ -41,6 +41,9 @@ pub enum EmissionSplits {
 }
 
 impl EmissionSplits {
+    /// The most camera rays a path takes.
+    pub const MOST: usize = 16;
+
     /// Camera rays a path takes in a pixel that splits.
     pub fn count(self) -> usize {
         match self {
@@ -61,7 +64,7 @@ impl std::fmt::Display for EmissionSplits {
 
 /// The first sixteen points of the two-dimensional Sobol sequence (van der Corput, and direction
 /// numbers 1/2, 3/4, 5/8, 15/16), in sixteenths, in index order (not Gray-code order).
-const SOBOL_SIXTEENTHS: [(u32, u32); 16] = [
+const SOBOL_SIXTEENTHS: [(u32, u32); EmissionSplits::MOST] = [
     (0, 0),
     (8, 8),
     (4, 12),

@@ -33,7 +33,7 @@ use crate::accel::Accel;
 use crate::film::filter::{Filter, FilterKind};
 use crate::film::shard::{PixelSum, Shard};
 use crate::film::Image;
-use crate::geometry::Ray;
+use crate::geometry::{Hit, Ray};
 use crate::sample::{AnySampler, Dim, Sampler, SamplerKind};
 use crate::scene::features::Features;
 use crate::scene::{Camera, Scene};
@@ -226,6 +226,16 @@ impl Acc {
     }
 }
 
+/// One camera sample of a pixel: its index, its point in the pixel's 2D set, and the filter's
+/// offset and weight for that point.
+#[derive(Clone, Copy, Debug, Default)]
+struct CameraSample {
+    index: u32,
+    u: Vec2,
+    offset: Vec2,
+    weight: f32,
+}
+
 struct Tile {
     x0: usize,
     y0: usize,
@@ -294,7 +304,7 @@ impl Ctx<'_> {
         while next < to {
             // The camera rays of up to `PACKET` of the pixel's samples, traced together (they are
             // coherent: Embree answers them as one packet); then each path goes on alone.
-            let mut takes = [(0u32, Vec2::ZERO, 0.0f32, Vec2::ZERO); PACKET];
+            let mut takes = [CameraSample::default(); PACKET];
             let mut cam = [Ray::new(Vec3::ZERO, Vec3::Z); PACKET];
             let mut n = 0;
             while next < to && n < PACKET {
@@ -310,7 +320,12 @@ impl Ctx<'_> {
                 cam[n] = self
                     .integrator
                     .seeded(self.cam.generate(film, sampler), sampler);
-                takes[n] = (i, offset, w, u);
+                takes[n] = CameraSample {
+                    index: i,
+                    u,
+                    offset,
+                    weight: w,
+                };
                 n += 1;
             }
             let mut first = [None; PACKET];
@@ -322,9 +337,15 @@ impl Ctx<'_> {
                 rays +=
                     self.split_emission(sampler, (x, y), &takes[..n], (&cam, &first), &mut split);
             }
-            for (((&(i, offset, w, _), &ray), &hit), &split) in
+            for (((take, &ray), &hit), &split) in
                 takes.iter().zip(&cam).zip(&first).zip(&split).take(n)
             {
+                let CameraSample {
+                    index: i,
+                    offset,
+                    weight: w,
+                    ..
+                } = *take;
                 let mut path = PathFeatures::default();
                 let r = if !FEATURES && hit.is_none() {
                     self.integrator.missed(&ray)
@@ -372,16 +393,16 @@ impl Ctx<'_> {
         &self,
         sampler: &mut AnySampler,
         (x, y): (usize, usize),
-        takes: &[(u32, Vec2, f32, Vec2)],
-        (cam, first): (&[Ray; PACKET], &[Option<crate::geometry::Hit>; PACKET]),
+        takes: &[CameraSample],
+        (cam, first): (&[Ray; PACKET], &[Option<Hit>; PACKET]),
         out: &mut [Vec3; PACKET],
     ) -> u64 {
-        const MOST: usize = PACKET * 15;
+        const MOST: usize = PACKET * (EmissionSplits::MOST - 1);
         let k = self.settings.emission_splits.count();
         let mut rays = [Ray::new(Vec3::ZERO, Vec3::Z); MOST];
         let mut weights = [0.0f32; MOST];
         let mut m = 0;
-        for &(i, _, _, u) in takes {
+        for &CameraSample { index: i, u, .. } in takes {
             // The companions share the camera ray's lens position, time and seed (dimensions the
             // restarted sampler draws again alike).
             sampler.start(x as u32, y as u32, i);
@@ -406,7 +427,7 @@ impl Ctx<'_> {
         self.integrator
             .accel
             .intersect_many(&rays[..m], &mut hits[..m]);
-        for (q, &(_, _, w, _)) in takes.iter().enumerate() {
+        for (q, &CameraSample { weight: w, .. }) in takes.iter().enumerate() {
             let own = w * self.integrator.seen(&cam[q], first[q].as_ref()).total();
             let mut sum = own;
             for c in q * (k - 1)..(q + 1) * (k - 1) {
