@@ -292,7 +292,10 @@ impl<'a> Integrator<'a> {
             if si.emission != Vec3::ZERO {
                 l += st.beta * si.emission * self.emission_weight(&si, st.prev);
             }
-            if bounce >= self.max_depth || si.unlit {
+            // A surface that scatters nothing (a black emitter) ends the path: its light sample
+            // and BSDF sample would each bring zero, after a light choice (many-emitters' light
+            // BVH descent) for nothing.
+            if bounce >= self.max_depth || si.unlit || si.bsdf.scatters_nothing() {
                 break;
             }
             let leave = Leave {

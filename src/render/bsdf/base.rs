@@ -44,14 +44,25 @@ impl Bsdf {
     /// eval and sample skip the Fresnel and microfacet work they would multiply by it, and give
     /// the same bits (walls of OBJ scenes are mostly this).
     pub(super) fn lambert_only(&self) -> Option<f32> {
-        let plain = self.specular == 0.0
+        let w = luminance(self.base);
+        (self.plain() && w > 0.0).then(|| choice_probabilities([0.0, w, 0.0])[1])
+    }
+
+    /// The base is Lambert alone or nothing: no specular layer, metal, transmission or thin film,
+    /// and from this side no total internal reflection.
+    fn plain(&self) -> bool {
+        self.specular == 0.0
             && self.metallic == 0.0
             && self.transmission == 0.0
             && self.eta >= 1.0
             && self.diffuse_transmission.is_none()
-            && self.iridescence.is_none();
-        let w = luminance(self.base);
-        (plain && w > 0.0).then(|| choice_probabilities([0.0, w, 0.0])[1])
+            && self.iridescence.is_none()
+    }
+
+    /// Whether the surface scatters no light at all: a plain black base under no coat or sheen
+    /// (glTF emitters often are), where `eval` is zero everywhere and `sample` brings nothing.
+    pub fn scatters_nothing(&self) -> bool {
+        self.plain() && self.base == Vec3::ZERO && self.coat.is_none() && self.sheen.is_none()
     }
 
     /// A thick surface between equal indices: rough or not, it refracts nothing (the microfacet

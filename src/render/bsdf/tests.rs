@@ -51,6 +51,47 @@ fn albedos(bsdf: &Bsdf, wo: Vec3, n: u32) -> (f64, f64) {
     (is / n as f64, uni / (m * m) as f64)
 }
 
+/// A surface that scatters nothing is exactly that: zero from `eval` and from `sample`, for
+/// every pair of directions; black metal (Schlick's grazing reflection), a black dielectric with
+/// a specular layer, a coat or a sheen over black, and black glass seen from inside (total
+/// internal reflection) all scatter.
+#[test]
+fn black_surfaces_scatter_nothing_and_nothing_else_is_black() {
+    let frame = Frame::from_normal(Vec3::new(0.1, -0.3, 0.9).normalize());
+    for rough in [0.0, 0.5, 1.0] {
+        let black = Bsdf::new(frame, Vec3::ZERO, 0.0, rough, 0.0);
+        assert!(black.scatters_nothing());
+        for k in 0..2000 {
+            let dir = |a: u32| {
+                let (z, phi) = (2.0 * hash(a) - 1.0, 2.0 * PI * hash(a + 1));
+                let r = (1.0 - z * z).max(0.0).sqrt();
+                Vec3::new(r * phi.cos(), r * phi.sin(), z)
+            };
+            let (wo, wi) = (dir(4 * k), dir(4 * k + 2));
+            assert_eq!(black.eval(wo, wi).0, Vec3::ZERO, "{wo} {wi}");
+            let u = Vec2::new(hash(9 * k + 7), hash(9 * k + 8));
+            if let Some(s) = black.sample(wo, hash(9 * k + 6), u) {
+                assert_eq!(s.f, Vec3::ZERO, "{wo}");
+            }
+        }
+        let scattering = [
+            Bsdf::new(frame, Vec3::ZERO, 1.0, rough, 0.0),
+            Bsdf::new(frame, Vec3::ZERO, 0.0, rough, 1.0),
+            with_coat(Bsdf::new(frame, Vec3::ZERO, 0.0, rough, 0.0), 1.0, 0.3),
+            with_sheen(
+                Bsdf::new(frame, Vec3::ZERO, 0.0, rough, 0.0),
+                Vec3::ONE,
+                0.5,
+            ),
+            Bsdf::new(frame, Vec3::ZERO, 0.0, rough, 0.0).with_dielectric(1.0, 1.5, false, false),
+            Bsdf::new(frame, Vec3::splat(0.01), 0.0, rough, 0.0),
+        ];
+        for (i, b) in scattering.iter().enumerate() {
+            assert!(!b.scatters_nothing(), "surface {i}, roughness {rough}");
+        }
+    }
+}
+
 /// The albedo estimated by importance sampling must equal the one from uniform sampling (a check
 /// that `sample`'s pdf is the density it really draws from, and that `eval` is consistent), for
 /// reflection, thick (entering and leaving) and thin rough transmission; and no lobe mix
