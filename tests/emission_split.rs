@@ -9,8 +9,8 @@ use std::sync::Arc;
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use glint::accel::Backend;
 use glint::render::emission_split::SplitPixels;
+use glint::render::{AdaptiveMode, RenderSettings, RenderStats};
 use glint::render::{EmissionSplits, FirstHit, Integrator, LightSampler, RayCamera};
-use glint::render::{RenderSettings, RenderStats};
 use glint::sample::{AnySampler, Sampler, SamplerKind};
 use glint::scene::features::Features;
 use glint::scene::texture::Texture;
@@ -192,8 +192,15 @@ fn the_pixels_that_split_are_the_emitters_edges() {
     );
 }
 
-/// Mean image value and per-pixel variance over seeds of the front view at `spp`, with `splits`.
-fn seeds_mean_and_variance(splits: EmissionSplits, spp: u32, seeds: u64) -> (f64, Vec<f64>, usize) {
+/// Mean image value and per-pixel variance over seeds of the front view at `spp`, with `splits`;
+/// with `rounds`, as the one round of an adaptive render (whose companions are shifted copies of
+/// the samples, not the sequence past the pass).
+fn seeds_mean_and_variance(
+    splits: EmissionSplits,
+    spp: u32,
+    seeds: u64,
+    rounds: bool,
+) -> (f64, Vec<f64>, usize) {
     let scene = emitter_before_a_wall(4.0, false, Mat4::from_rotation_z(0.3));
     let (w, h) = (24usize, 24usize);
     let mut sum = vec![0.0f64; w * h];
@@ -207,6 +214,13 @@ fn seeds_mean_and_variance(splits: EmissionSplits, spp: u32, seeds: u64) -> (f64
             max_depth: 2,
             seed,
             emission_splits: splits,
+            adaptive: if rounds {
+                AdaptiveMode::Variance
+            } else {
+                AdaptiveMode::Off
+            },
+            min_spp: spp,
+            max_spp: spp,
             ..Default::default()
         };
         let accel = glint::accel::build(scene.clone(), Backend::Bvh).unwrap();
@@ -240,21 +254,38 @@ fn seeds_mean_and_variance(splits: EmissionSplits, spp: u32, seeds: u64) -> (f64
 #[test]
 fn splitting_keeps_the_mean_and_lowers_the_noise_at_emitters_edges() {
     let seeds = 24;
-    let (mean_1, var_1, split_1) = seeds_mean_and_variance(EmissionSplits::One, 16, seeds);
-    let (mean_8, var_8, split_8) = seeds_mean_and_variance(EmissionSplits::Eight, 16, seeds);
-    assert_eq!(split_1, 0);
-    assert!(split_8 > 40, "{split_8} pixels split");
-    // The image means agree within their noise: each is a mean of 24 renders, whose spread the
-    // per-pixel variances bound (the pixels' errors are independent enough for a bound of 4
-    // standard errors of the mean over the image).
-    let se = |var: &[f64]| (var.iter().sum::<f64>() / seeds as f64).sqrt() / var.len() as f64;
-    let tol = 4.0 * (se(&var_1).powi(2) + se(&var_8).powi(2)).sqrt();
+    let mut split_variance = Vec::new();
+    for rounds in [false, true] {
+        let (mean_1, var_1, split_1) =
+            seeds_mean_and_variance(EmissionSplits::One, 16, seeds, rounds);
+        let (mean_8, var_8, split_8) =
+            seeds_mean_and_variance(EmissionSplits::Eight, 16, seeds, rounds);
+        assert_eq!(split_1, 0);
+        assert!(split_8 > 40, "{split_8} pixels split");
+        // The image means agree within their noise: each is a mean of 24 renders, whose spread
+        // the per-pixel variances bound (the pixels' errors are independent enough for a bound
+        // of 4 standard errors of the mean over the image).
+        let se = |var: &[f64]| (var.iter().sum::<f64>() / seeds as f64).sqrt() / var.len() as f64;
+        let tol = 4.0 * (se(&var_1).powi(2) + se(&var_8).powi(2)).sqrt();
+        assert!(
+            (mean_1 - mean_8).abs() <= tol,
+            "rounds {rounds}: means {mean_1} and {mean_8}, tolerance {tol}"
+        );
+        // The noise is the emitter's edges (its radiance is 8x what the wall reflects): with the
+        // companions it falls to well under half.
+        let (v1, v8): (f64, f64) = (var_1.iter().sum(), var_8.iter().sum());
+        assert!(
+            v8 < 0.4 * v1,
+            "rounds {rounds}: summed variance {v1} -> {v8}"
+        );
+        split_variance.push(v8);
+    }
+    // In one pass the companions continue the pixel's sequence, so samples and companions are one
+    // net; shifted copies of each sample are not (measured 0.22 against 0.54, from 3.2 unsplit).
     assert!(
-        (mean_1 - mean_8).abs() <= tol,
-        "means {mean_1} and {mean_8}, tolerance {tol}"
+        split_variance[0] < 0.6 * split_variance[1],
+        "one pass {} against rounds {}",
+        split_variance[0],
+        split_variance[1]
     );
-    // The noise is the emitter's edges (its radiance is 8x what the wall reflects): with the
-    // companions it falls to well under half.
-    let (v1, v8): (f64, f64) = (var_1.iter().sum(), var_8.iter().sum());
-    assert!(v8 < 0.4 * v1, "summed variance {v1} -> {v8}");
 }
