@@ -8,20 +8,21 @@
 use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
 /// Arc cosine of `x` in [-1, 1] (clamped): Abramowitz & Stegun 4.4.46, acos |x| = sqrt(1 - |x|)
-/// times a degree-7 polynomial (2e-8 in exact arithmetic), mirrored for negative x.
+/// times a degree-7 polynomial (2e-8 in exact arithmetic), mirrored for negative x. The polynomial
+/// by Estrin's scheme: pairs of terms side by side, three multiply-add levels deep rather than
+/// Horner's seven (the lookup of a sky pixel waits on this chain).
 #[inline]
 // The coefficients as published (rounded to f32 by the compiler).
 #[allow(clippy::excessive_precision)]
 pub fn acos(x: f32) -> f32 {
     let a = x.abs().min(1.0);
-    let p = -0.001_262_491_1;
-    let p = p * a + 0.006_670_090_1;
-    let p = p * a - 0.017_088_125_6;
-    let p = p * a + 0.030_891_881_0;
-    let p = p * a - 0.050_174_304_6;
-    let p = p * a + 0.088_978_987_4;
-    let p = p * a - 0.214_598_801_6;
-    let p = p * a + 1.570_796_305_0;
+    let a2 = a * a;
+    let a4 = a2 * a2;
+    let p01 = 1.570_796_305_0 - 0.214_598_801_6 * a;
+    let p23 = 0.088_978_987_4 - 0.050_174_304_6 * a;
+    let p45 = 0.030_891_881_0 - 0.017_088_125_6 * a;
+    let p67 = 0.006_670_090_1 - 0.001_262_491_1 * a;
+    let p = (p01 + a2 * p23) + a4 * (p45 + a2 * p67);
     let r = (1.0 - a).sqrt() * p;
     if x < 0.0 {
         PI - r
@@ -42,16 +43,17 @@ pub fn atan2(y: f32, x: f32) -> f32 {
     if !(hi > 0.0 && hi < f32::INFINITY) || x.is_nan() || y.is_nan() {
         return y.atan2(x);
     }
-    let t = lo / hi;
-    // tan(pi/8): above it, atan t = pi/4 + atan((t - 1) / (t + 1)).
-    let upper = t > 0.414_213_57;
+    // tan(pi/8): above it, atan t = pi/4 + atan((t - 1) / (t + 1)), where t = lo / hi, so
+    // (lo - hi) / (lo + hi): one division either way, chosen before it is made.
+    let upper = lo > 0.414_213_57 * hi;
     let (base, z) = if upper {
-        (FRAC_PI_4, (t - 1.0) / (t + 1.0))
+        (FRAC_PI_4, (lo - hi) / (lo + hi))
     } else {
-        (0.0, t)
+        (0.0, lo / hi)
     };
     let z2 = z * z;
-    let poly = ((8.053_744_5e-2 * z2 - 1.387_768_6e-1) * z2 + 1.997_771_1e-1) * z2 - 3.333_295e-1;
+    let z4 = z2 * z2;
+    let poly = (1.997_771_1e-1 * z2 - 3.333_295e-1) + z4 * (8.053_744_5e-2 * z2 - 1.387_768_6e-1);
     let mut r = base + (poly * z2 * z + z);
     if ay > ax {
         r = FRAC_PI_2 - r;
