@@ -73,6 +73,7 @@ impl RayCamera {
 
     /// The camera ray through `film`, drawing a lens position (`Dim::Lens`) only for a thin lens and
     /// a time (`Dim::Time`) only when something moves.
+    #[inline(always)]
     pub fn generate(&self, film: Vec2, sampler: &mut impl Sampler) -> Ray {
         let u_lens = match self.lens {
             Some(_) => sampler.get_2d(Dim::Lens, 0),
@@ -88,6 +89,7 @@ impl RayCamera {
 
     /// The ray through `film` from lens sample `u_lens` (the disk's centre at (0.5, 0.5)) at shutter
     /// time `time`.
+    #[inline(always)]
     pub fn ray_at(&self, film: Vec2, u_lens: Vec2, time: f32) -> Ray {
         // Normalised device coordinates in [-1, 1], y up.
         let ndc = Vec2::new(

@@ -103,13 +103,13 @@ impl<'a> Integrator<'a> {
         }
     }
 
-    /// The camera ray as the path traces it: with its seed for stochastic transparency (`li`
-    /// takes rays made so, which may be traced ahead, together).
-    pub fn seeded(&self, camera_ray: Ray, sampler: &mut impl Sampler) -> Ray {
-        camera_ray.with_seed(self.alpha_seed(sampler, 0))
+    /// The seed of a camera ray for stochastic transparency: `li` takes camera rays with it (and
+    /// they may be traced ahead, together).
+    pub fn camera_seed(&self, sampler: &mut impl Sampler) -> u32 {
+        self.alpha_seed(sampler, 0)
     }
 
-    /// Radiance along `camera_ray` (from `seeded`), whose closest hit `first` may have found.
+    /// Radiance along `camera_ray` (seeded by `camera_seed`), whose closest hit `first` may have found.
     pub fn li(&self, camera_ray: Ray, first: FirstHit, sampler: &mut impl Sampler) -> PathResult {
         let mut none = PathFeatures::default();
         if self.thin_shadows {

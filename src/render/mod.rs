@@ -289,6 +289,16 @@ impl Ctx<'_> {
         rays
     }
 
+    /// The camera ray through `film` with its seed, as `Integrator::li` takes it, made in `slot`:
+    /// a ray rebuilt around its seed and then copied read the seed's narrow store back through
+    /// wide loads, a store-forwarding stall on every camera ray (with the camera inlined, a view of
+    /// the sky alone 2.10 -> 1.97 s, 256 spp, one thread).
+    #[inline(always)]
+    fn camera_ray(&self, film: Vec2, sampler: &mut AnySampler, slot: &mut Ray) {
+        *slot = self.cam.generate(film, sampler);
+        slot.seed = self.integrator.camera_seed(sampler);
+    }
+
     /// Takes samples `acc.n .. to` of pixel (x, y), with `FEATURES` also into `features`; returns
     /// the rays traced.
     fn sample_pixel<const FEATURES: bool>(
@@ -317,9 +327,7 @@ impl Ctx<'_> {
                 let u = sampler.get_2d(Dim::Pixel, 0);
                 let (offset, w) = self.filter.sample(u);
                 let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
-                cam[n] = self
-                    .integrator
-                    .seeded(self.cam.generate(film, sampler), sampler);
+                self.camera_ray(film, sampler, &mut cam[n]);
                 takes[n] = CameraSample {
                     index: i,
                     u,
@@ -416,9 +424,7 @@ impl Ctx<'_> {
                 let u = extended.unwrap_or_else(|| emission_split::companion(u, j));
                 let (offset, w) = self.filter.sample(u);
                 let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
-                rays[m] = self
-                    .integrator
-                    .seeded(self.cam.generate(film, sampler), sampler);
+                self.camera_ray(film, sampler, &mut rays[m]);
                 weights[m] = w;
                 m += 1;
             }
@@ -538,12 +544,9 @@ impl Ctx<'_> {
             x as f32 + cx as f32 / st.g as f32,
             y as f32 + cy as f32 / st.g as f32,
         );
-        let ray = self.cam.generate(film, sampler);
-        let r = self.integrator.li(
-            self.integrator.seeded(ray, sampler),
-            FirstHit::Untraced,
-            sampler,
-        );
+        let mut ray = Ray::new(Vec3::ZERO, Vec3::Z);
+        self.camera_ray(film, sampler, &mut ray);
+        let r = self.integrator.li(ray, FirstHit::Untraced, sampler);
         st.rays += r.rays as u64;
         let v = if r.radiance.is_finite() {
             r.radiance
