@@ -335,6 +335,7 @@ impl<'a> Integrator<'a> {
     /// Next-event estimation at `si` of bounce `bounce` with the light chosen by `u_choice`: `beta`
     /// times the MIS-weighted light a light sample brings, if any (pointless when every lobe is a
     /// delta lobe, but the sample dimensions are drawn anyway).
+    #[inline(always)]
     fn next_event<const THIN: bool>(
         &self,
         si: &SurfaceInteraction,
@@ -391,6 +392,7 @@ impl<'a> Integrator<'a> {
 
     /// Continues the path by sampling the BSDF at `si` (then Russian roulette): the next ray, or
     /// None where the path ends.
+    #[inline(always)]
     fn scatter(
         &self,
         si: &SurfaceInteraction,

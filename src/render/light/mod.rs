@@ -405,11 +405,21 @@ impl LightSet {
     /// Radiance that `ray` receives from analytic area lights in front of `t_max` (the scene hit),
     /// each weighted against the BSDF sample of solid-angle pdf `pdf` that made the ray at `ctx`
     /// (`None` for camera rays and after specular bounces: weight 1). Lights do not stop the ray.
+    #[inline(always)]
     pub fn emitted(&self, ray: &Ray, t_max: f32, prev: Option<(f32, LightContext)>) -> Vec3 {
-        let mut l = Vec3::ZERO;
         if self.hittable.is_empty() {
-            return l;
+            return Vec3::ZERO;
         }
+        self.emitted_by_hittable(ray, t_max, prev)
+    }
+
+    fn emitted_by_hittable(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        prev: Option<(f32, LightContext)>,
+    ) -> Vec3 {
+        let mut l = Vec3::ZERO;
         let len = ray.d.length();
         if len <= 0.0 {
             return l;
