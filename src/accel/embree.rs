@@ -803,6 +803,7 @@ impl Accel for EmbreeAccel {
         }
     }
 
+    #[inline]
     fn intersect(&self, ray: &Ray) -> Option<Hit> {
         let mut rh = RayHit::new(ray, 0);
         self.query(std::slice::from_ref(ray), || self.intersect1(&mut rh));
@@ -825,6 +826,7 @@ impl Accel for EmbreeAccel {
         });
     }
 
+    #[inline]
     fn occluded(&self, ray: &Ray) -> bool {
         let mut r = rtc_ray(ray, 0);
         self.query(std::slice::from_ref(ray), || self.occluded1(&mut r));
@@ -834,6 +836,10 @@ impl Accel for EmbreeAccel {
 
     fn memory_bytes(&self) -> usize {
         self.memory.load(Ordering::Relaxed).max(0) as usize
+    }
+
+    fn as_embree(&self) -> Option<&EmbreeAccel> {
+        Some(self)
     }
 }
 

@@ -19,6 +19,7 @@ pub mod objects;
 pub mod obvhs;
 #[cfg(test)]
 mod testing;
+mod tracer;
 
 use std::fmt;
 use std::str::FromStr;
@@ -26,6 +27,7 @@ use std::sync::Arc;
 
 use crate::geometry::{Hit, Ray};
 use crate::scene::Scene;
+pub use tracer::Tracer;
 
 /// An acceleration structure over one scene.
 ///
@@ -46,6 +48,11 @@ pub trait Accel: Send + Sync {
     /// Bytes held by the structure (for benchmarks).
     fn memory_bytes(&self) -> usize {
         0
+    }
+    /// This backend as Embree, whose queries `Tracer` calls directly.
+    #[cfg(feature = "embree")]
+    fn as_embree(&self) -> Option<&embree::EmbreeAccel> {
+        None
     }
 }
 

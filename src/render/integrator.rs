@@ -7,7 +7,7 @@ use super::features::PathFeatures;
 use super::light::{LightContext, LightSampler, LightSet};
 use super::offset::offset_ray_origin;
 use super::surface::{self, SurfaceInteraction};
-use crate::accel::Accel;
+use crate::accel::{Accel, Tracer};
 use crate::geometry::{Hit, Ray};
 use crate::sample::mis::power_heuristic;
 use crate::sample::{Dim, Sampler};
@@ -40,7 +40,7 @@ const MAX_THIN_LAYERS: u32 = 16;
 
 pub struct Integrator<'a> {
     pub scene: &'a Scene,
-    pub accel: &'a dyn Accel,
+    pub accel: Tracer<'a>,
     pub lights: LightSet,
     /// Number of bounces after the camera ray (1 = direct light only).
     pub max_depth: u32,
@@ -84,7 +84,7 @@ impl<'a> Integrator<'a> {
     ) -> Self {
         Self {
             scene,
-            accel,
+            accel: Tracer::new(accel),
             lights: LightSet::with_sampler(scene, light_sampler),
             max_depth,
             thin_shadows: features.thin_walls,
