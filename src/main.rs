@@ -29,5 +29,5 @@ fn cpu_has_avx2_and_fma() -> bool {
     let fma = l1 & (1 << 12) != 0;
     let osxsave = l1 & (1 << 27) != 0;
     let avx2 = l7 & (1 << 5) != 0;
-    max >= 7 && fma && osxsave && avx2
+    fma && osxsave && avx2
 }

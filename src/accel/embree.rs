@@ -112,11 +112,10 @@ impl RayHit8 {
     /// 672-byte packet was copied once more: 1-4% of a render); returns the active lanes, the
     /// lanes past the rays inactive.
     fn load(&mut self, rays: &[Ray], first: u32) -> Valid8 {
-        let p = self;
         let mut valid = Valid8([0; 8]);
         for (lane, ray) in rays.iter().enumerate().take(8) {
             let r = rtc_ray(ray, first + lane as u32);
-            let (q, h) = (&mut p.rh.ray, &mut p.rh.hit);
+            let (q, h) = (&mut self.rh.ray, &mut self.rh.hit);
             (q.org_x[lane], q.org_y[lane], q.org_z[lane]) = (r.org_x, r.org_y, r.org_z);
             (q.dir_x[lane], q.dir_y[lane], q.dir_z[lane]) = (r.dir_x, r.dir_y, r.dir_z);
             (q.tnear[lane], q.tfar[lane], q.time[lane]) = (r.tnear, r.tfar, r.time);

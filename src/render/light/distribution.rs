@@ -18,8 +18,6 @@ struct Cell {
 pub struct Distribution1D {
     /// The CDF runs from `cells[0].cdf = 0` to 1 past the last cell.
     cells: Vec<Cell>,
-    /// Integral of `func` over [0, 1).
-    integral: f32,
     /// `guide[k]`: how many CDF values (with the closing 1) are at most `k / G` (G = `guide.len() -
     /// 1`, a power of two, so that `u * G` and `k / G` are exact), so the search for `u` in
     /// `[k/G, (k+1)/G)` stays between `guide[k]` and `guide[k + 1]` and finds what a search of the
@@ -32,16 +30,8 @@ impl Distribution1D {
     pub fn new(func: &[f32]) -> Self {
         let mut cells = Vec::new();
         let mut guide = Vec::new();
-        let integral = tabulate(func, func.len().max(1), &mut cells, &mut guide);
-        Self {
-            cells,
-            integral,
-            guide,
-        }
-    }
-
-    pub fn integral(&self) -> f32 {
-        self.integral
+        tabulate(func, func.len().max(1), &mut cells, &mut guide);
+        Self { cells, guide }
     }
 
     /// The density at cell `i` (with respect to [0, 1)).
@@ -123,14 +113,15 @@ fn sample(cells: &[Cell], guide: &[u32], u: f32) -> (f32, usize, f32) {
 }
 
 /// A piecewise-constant density over [0, 1)^2: a marginal over rows (v), a conditional per row (u),
-/// the rows' cells and guides each in one array.
+/// the rows' cells and guides each in one array (a row's cells `width` apart, its guide `guide`
+/// entries apart).
 #[derive(Clone, Debug)]
 pub struct Distribution2D {
     marginal: Distribution1D,
     cells: Vec<Cell>,
     guides: Vec<u32>,
     width: usize,
-    rows: usize,
+    guide: usize,
 }
 
 impl Distribution2D {
@@ -138,12 +129,18 @@ impl Distribution2D {
     pub fn new(func: &[f32], width: usize) -> Self {
         let width = width.max(1);
         let rows = func.len().div_ceil(width).max(1);
+        let guide = guide_steps(width) + 1;
         let mut cells = Vec::with_capacity(rows * width);
-        let mut guides = Vec::with_capacity(rows * (guide_steps(width) + 1));
+        let mut guides = Vec::with_capacity(rows * guide);
+        // `tabulate` reads only the row's `width` values (a short last row padded with zeros).
         let integrals: Vec<f32> = (0..rows)
             .map(|r| {
-                let row = func.get(r * width..).unwrap_or(&[]);
-                tabulate(&row[..row.len().min(width)], width, &mut cells, &mut guides)
+                tabulate(
+                    func.get(r * width..).unwrap_or(&[]),
+                    width,
+                    &mut cells,
+                    &mut guides,
+                )
             })
             .collect();
         Self {
@@ -151,16 +148,15 @@ impl Distribution2D {
             cells,
             guides,
             width,
-            rows,
+            guide,
         }
     }
 
     /// Row `r`'s cells and guide.
     fn row(&self, r: usize) -> (&[Cell], &[u32]) {
-        let g = guide_steps(self.width) + 1;
         (
             &self.cells[r * self.width..(r + 1) * self.width],
-            &self.guides[r * g..(r + 1) * g],
+            &self.guides[r * self.guide..(r + 1) * self.guide],
         )
     }
 
@@ -174,7 +170,8 @@ impl Distribution2D {
 
     /// The density at a point of [0, 1)^2.
     pub fn pdf(&self, p: Vec2) -> f32 {
-        let row = ((p.y * self.rows as f32) as usize).min(self.rows - 1);
+        let rows = self.marginal.cells.len();
+        let row = ((p.y * rows as f32) as usize).min(rows - 1);
         let col = ((p.x * self.width as f32) as usize).min(self.width - 1);
         self.marginal.pdf_cell(row) * self.cells[row * self.width + col].pdf
     }
