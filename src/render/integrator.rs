@@ -427,7 +427,12 @@ impl<'a> Integrator<'a> {
         // fully; straight through a thin wall the previous vertex's MIS state holds, since shadow
         // rays see through it.
         if !s.straight {
-            st.prev = (!s.delta).then_some((s.pdf, light_context(si)));
+            // Written in place: built beside and copied, its narrow stores were read back through
+            // wider loads (a store-forwarding stall on every bounce).
+            st.prev = None;
+            if !s.delta {
+                st.prev = Some((s.pdf, light_context(si)));
+            }
         }
         let ray = Ray::new(origin_towards(si, s.wi), s.wi)
             .with_seed(leave.seed)
