@@ -88,6 +88,7 @@ impl EnvMap {
     }
 
     /// Lat-long coordinates in [0,1)^2 of a world direction (u across, v down from the top).
+    #[inline(always)]
     pub fn direction_to_uv(&self, d: Vec3) -> Vec2 {
         let m = self.rotation.transpose() * d;
         let theta = inverse_trig::acos(m.y);
@@ -106,6 +107,7 @@ impl EnvMap {
     }
 
     /// The pixel (column, row) holding `uv`.
+    #[inline(always)]
     pub fn pixel_of(&self, uv: Vec2) -> (usize, usize) {
         // u wraps around.
         let x = wrap_index((uv.x * self.width as f32) as i64, self.width as i64) as usize;
@@ -115,11 +117,13 @@ impl EnvMap {
 
     /// Radiance arriving from world direction `d` (nearest pixel: piecewise constant, which is what
     /// the importance sampling's pdf assumes).
+    #[inline(always)]
     pub fn lookup(&self, d: Vec3) -> Vec3 {
         self.at_uv(self.direction_to_uv(d))
     }
 
     /// The radiance of the pixel holding lat-long coordinates `uv` (for callers that have them).
+    #[inline(always)]
     pub fn at_uv(&self, uv: Vec2) -> Vec3 {
         let (x, y) = self.pixel_of(uv);
         self.pixels[y * self.width + x]

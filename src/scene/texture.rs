@@ -16,6 +16,7 @@ pub enum Wrap {
 /// `i` modulo `n` (> 0) in `0..n`, as `rem_euclid`, without its integer division where `i` is
 /// within a period of the range, as texel coordinates nearly always are (textures' repeats, and
 /// environment maps' columns, where it was measured).
+#[inline]
 pub(crate) fn wrap_index(i: i64, n: i64) -> i64 {
     if (0..n).contains(&i) {
         i

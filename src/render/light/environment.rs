@@ -73,6 +73,7 @@ impl Environment {
     }
 
     /// Radiance from unit direction `d`.
+    #[inline(always)]
     pub fn radiance(&self, d: Vec3) -> Vec3 {
         match &self.map {
             None => self.radiance,

@@ -448,7 +448,10 @@ impl LightSet {
     }
 
     /// `escaped` for a direction already of unit length (a camera ray's), spared the
-    /// normalisation (a view of the sky alone: 1.37-1.48 s -> 1.04-1.10 s, one thread).
+    /// normalisation (a view of the sky alone: 1.37-1.48 s -> 1.04-1.10 s, one thread). Inlined
+    /// with the map lookup under it, whose calls each returned a colour through memory (the sky
+    /// alone, 256 spp: 2.03 -> 1.85 s).
+    #[inline(always)]
     pub fn escaped_unit(&self, d: Vec3, prev: Option<(f32, LightContext)>) -> Vec3 {
         let mut l = Vec3::ZERO;
         for &i in &self.environments {
