@@ -252,13 +252,13 @@ impl<'a> Integrator<'a> {
             // Analytic lights and environments are not in the accelerator: the ray collects their
             // (MIS-weighted) radiance up to the scene hit or on leaving the scene.
             let t_hit = hit.as_ref().map_or(f32::INFINITY, |h| h.t);
-            let le = self.lights.emitted(&ray, t_hit, st.prev);
+            let le = self.lights.emitted(&ray, t_hit, st.prev());
             l += st.beta * le;
             let Some(hit) = hit else {
                 if FEATURES {
                     features.escaped();
                 }
-                l += st.beta * self.lights.escaped(ray.d, st.prev);
+                l += st.beta * self.lights.escaped(ray.d, st.prev());
                 if bounce == 0 && le == Vec3::ZERO {
                     alpha = 0.0;
                 }
@@ -290,7 +290,7 @@ impl<'a> Integrator<'a> {
                 features.hit(&si, bounce);
             }
             if si.emission != Vec3::ZERO {
-                l += st.beta * si.emission * self.emission_weight(&si, st.prev);
+                l += st.beta * si.emission * self.emission_weight(&si, st.prev());
             }
             // A surface that scatters nothing (a black emitter) ends the path: its light sample
             // and BSDF sample would each bring zero, after a light choice (many-emitters' light
@@ -427,12 +427,11 @@ impl<'a> Integrator<'a> {
         // fully; straight through a thin wall the previous vertex's MIS state holds, since shadow
         // rays see through it.
         if !s.straight {
-            // Written in place: built beside and copied, its narrow stores were read back through
-            // wider loads (a store-forwarding stall on every bounce).
-            st.prev = None;
-            if !s.delta {
-                st.prev = Some((s.pdf, light_context(si)));
-            }
+            st.prev_pdf = (!s.delta).then_some(s.pdf);
+            // Field by field: copied whole, the context's 4- and 8-byte stores were read back by
+            // 8-byte loads that straddle them (a store-forwarding stall on every bounce).
+            st.prev_from.p = si.p;
+            st.prev_from.n = si.ng;
         }
         let ray = Ray::new(origin_towards(si, s.wi), s.wi)
             .with_seed(leave.seed)
@@ -460,9 +459,11 @@ fn light_context(si: &SurfaceInteraction) -> LightContext {
 struct PathState {
     /// Throughput.
     beta: Vec3,
-    /// The pdf of the BSDF sample that produced the ray, and where it left from (for MIS on
-    /// emitters the ray hits).
-    prev: Option<(f32, LightContext)>,
+    /// The pdf of the BSDF sample that produced the ray (for MIS on emitters the ray hits; none for
+    /// camera rays and after delta lobes), and where it left from (the context `light_context`
+    /// gives there; written in place, see `scatter`).
+    prev_pdf: Option<f32>,
+    prev_from: LightContext,
     /// Absorption coefficient of the medium the ray travels through (zero outside any).
     medium: Vec3,
     /// The RGB channel the path follows since its first dispersive vertex (KHR_materials_dispersion).
@@ -470,6 +471,11 @@ struct PathState {
 }
 
 impl PathState {
+    /// The BSDF sample that produced the ray, as the lights weigh it: its pdf and where it left.
+    fn prev(&self) -> Option<(f32, LightContext)> {
+        self.prev_pdf.map(|pdf| (pdf, self.prev_from))
+    }
+
     /// At a dispersive vertex: the first one picks a channel uniformly from `u` (probability 1/3,
     /// so the throughput keeps 3 times that channel and nothing of the others), and every one
     /// sees that channel's IOR. Returns what is left of `u`, uniform again, for the light choice.
@@ -494,7 +500,11 @@ impl Default for PathState {
     fn default() -> Self {
         Self {
             beta: Vec3::ONE,
-            prev: None,
+            prev_pdf: None,
+            prev_from: LightContext {
+                p: Vec3::ZERO,
+                n: Vec3::ZERO,
+            },
             medium: Vec3::ZERO,
             channel: None,
         }
