@@ -180,18 +180,20 @@ impl PackedBounds {
         let to = p - self.centre;
         let d2 = to.length_squared();
         let inv_d = if d2 > 0.0 { d2.sqrt().recip() } else { 0.0 };
-        let wi = to * inv_d;
-        let mut cos_w = self.w.dot(wi);
+        // Each cosine is a dot product with `to` over its length, and its sine sqrt(d^2 - dot^2)
+        // over the same length: the sines' square roots need not wait for `inv_d`'s.
+        let mut w_to = self.w.dot(to);
         if self.two_sided {
-            cos_w = cos_w.abs();
+            w_to = w_to.abs();
         }
-        let sin_w = safe_sqrt(1.0 - cos_w * cos_w);
+        let cos_w = w_to * inv_d;
+        let sin_w = safe_sqrt(d2 - w_to * w_to) * inv_d;
         // From inside the bounding sphere every direction may hold light.
         let (sin_b, cos_b) = if d2 < self.radius * self.radius {
             (0.0, -1.0)
         } else {
-            let sin_b = (self.radius * inv_d).min(1.0);
-            (sin_b, safe_sqrt(1.0 - sin_b * sin_b))
+            let r2 = self.radius * self.radius;
+            ((self.radius * inv_d).min(1.0), safe_sqrt(d2 - r2) * inv_d)
         };
         // theta' = max(0, theta_w - theta_o - theta_b): the least angle between an emitting normal
         // and the direction to p.
@@ -200,10 +202,11 @@ impl PackedBounds {
         let cos_p = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
         // pbrt-v4's clamp of the distance, so that points inside the box do not blow up: half the
         // diagonal, a length set against a squared distance as pbrt-v4 has it.
-        let mut importance = self.phi * cos_p / d2.max(self.radius);
+        let mut importance = self.phi / d2.max(self.radius) * cos_p;
         if n != Vec3::ZERO {
-            let cos_i = wi.dot(n).abs();
-            let sin_i = safe_sqrt(1.0 - cos_i * cos_i);
+            let n_to = to.dot(n).abs();
+            let cos_i = n_to * inv_d;
+            let sin_i = safe_sqrt(d2 - n_to * n_to) * inv_d;
             importance *= cos_sub_clamped(sin_i, cos_i, sin_b, cos_b);
         }
         // Selects rather than an early return: whether a bound is zero is hard to predict.
@@ -317,21 +320,23 @@ impl<L: Lanes> BoundsLanes<L> {
         ];
         let d2 = to[0] * to[0] + to[1] * to[1] + to[2] * to[2];
         let inv_d = L::select(d2.gt(zero), one / d2.sqrt(), zero);
-        let wi = [to[0] * inv_d, to[1] * inv_d, to[2] * inv_d];
-        let cos_w = self.w[0] * wi[0] + self.w[1] * wi[1] + self.w[2] * wi[2];
-        let cos_w = L::select(self.two_sided, cos_w.abs(), cos_w);
-        let sin_w = safe_sqrt(one - cos_w * cos_w);
-        let inside = d2.lt(self.radius * self.radius);
+        let w_to = self.w[0] * to[0] + self.w[1] * to[1] + self.w[2] * to[2];
+        let w_to = L::select(self.two_sided, w_to.abs(), w_to);
+        let cos_w = w_to * inv_d;
+        let sin_w = safe_sqrt(d2 - w_to * w_to) * inv_d;
+        let r2 = self.radius * self.radius;
+        let inside = d2.lt(r2);
         let sin_b = L::select(inside, zero, (self.radius * inv_d).min(one));
-        let cos_b = L::select(inside, L::splat(-1.0), safe_sqrt(one - sin_b * sin_b));
+        let cos_b = L::select(inside, L::splat(-1.0), safe_sqrt(d2 - r2) * inv_d);
         let cos_x = cos_sub(sin_w, cos_w, self.sin_o, self.cos_o);
         let sin_x = sin_sub(sin_w, cos_w, self.sin_o, self.cos_o);
         let cos_p = cos_sub(sin_x, cos_x, sin_b, cos_b);
-        let mut importance = self.phi * cos_p / d2.max(self.radius);
+        let mut importance = self.phi / d2.max(self.radius) * cos_p;
         if n != Vec3::ZERO {
-            let cos_i =
-                (wi[0] * L::splat(n.x) + wi[1] * L::splat(n.y) + wi[2] * L::splat(n.z)).abs();
-            let sin_i = safe_sqrt(one - cos_i * cos_i);
+            let n_to =
+                (to[0] * L::splat(n.x) + to[1] * L::splat(n.y) + to[2] * L::splat(n.z)).abs();
+            let cos_i = n_to * inv_d;
+            let sin_i = safe_sqrt(d2 - n_to * n_to) * inv_d;
             importance = importance * cos_sub(sin_i, cos_i, sin_b, cos_b);
         }
         // `max` keeps 0 where the bound is NaN; `gt` is false there too.
