@@ -345,8 +345,23 @@ impl Ctx<'_> {
                 rays +=
                     self.split_emission(sampler, (x, y), &takes[..n], (&cam, &first), &mut split);
             }
-            for (((take, &ray), &hit), &split) in
-                takes.iter().zip(&cam).zip(&first).zip(&split).take(n)
+            // The rays that met nothing, looked up first in a loop of their own: the lookups (long
+            // chains of dependent arithmetic) overlap one another there.
+            let mut missed = [None; PACKET];
+            if !FEATURES {
+                for ((m, ray), hit) in missed.iter_mut().zip(&cam).zip(&first).take(n) {
+                    if hit.is_none() {
+                        *m = Some(self.integrator.missed(ray));
+                    }
+                }
+            }
+            for ((((take, &ray), &hit), &split), &missed) in takes
+                .iter()
+                .zip(&cam)
+                .zip(&first)
+                .zip(&split)
+                .zip(&missed)
+                .take(n)
             {
                 let CameraSample {
                     index: i,
@@ -355,8 +370,8 @@ impl Ctx<'_> {
                     ..
                 } = *take;
                 let mut path = PathFeatures::default();
-                let r = if !FEATURES && hit.is_none() {
-                    self.integrator.missed(&ray)
+                let r = if let Some(r) = missed {
+                    r
                 } else {
                     // The sampler is stateless per dimension: restarted, it draws the path's
                     // dimensions as if the camera ray had just been made.
