@@ -6,7 +6,7 @@
 
 use glam::Vec2;
 
-use super::stratified::{permutation_element, rem};
+use super::stratified::{rem, Permutation};
 use super::{Dim, PixelKey, Sampler};
 use crate::geometry::mix64;
 
@@ -214,6 +214,8 @@ pub struct SobolSampler {
     seed: u64,
     /// Samples a pixel takes per pass: the indices that each dimension's permutation shuffles.
     pass: u32,
+    /// The permutations of a pass's indices.
+    permutation: Permutation,
     keys: PixelKey,
     pixel: u64,
     /// The sample's place in its pass, and the index its pass starts at.
@@ -229,6 +231,7 @@ impl SobolSampler {
         Self {
             seed,
             pass: pass.max(1),
+            permutation: Permutation::new(pass.max(1)),
             keys: PixelKey::default(),
             pixel: 0,
             slot: 0,
@@ -265,7 +268,10 @@ impl SobolSampler {
 
     /// The sample's index shuffled by seed `shuffle` (a `hash` of a flat dimension).
     fn shuffled(&self, shuffle: u64) -> u32 {
-        self.first + permutation_element(self.slot, self.pass, (shuffle ^ self.pass_key) as u32)
+        self.first
+            + self
+                .permutation
+                .element(self.slot, (shuffle ^ self.pass_key) as u32)
     }
 
     /// The hash of flat dimension `d` for this pixel: its shuffle's and its scrambles' seeds.
@@ -509,7 +515,11 @@ mod tests {
                 let q = match other.as_deref_mut() {
                     Some(o) => {
                         // A random pairing of the two samplers' samples.
-                        o.start(x, y, permutation_element(i, 64, mix64(px as u64) as u32));
+                        o.start(
+                            x,
+                            y,
+                            crate::sample::permutation_element(i, 64, mix64(px as u64) as u32),
+                        );
                         o.get_2d(dim, 0)
                     }
                     None => s.get_2d(dim, 0),

@@ -87,38 +87,59 @@ impl Sampler for StratifiedSampler {
 
 /// Element `i` of a pseudo-random permutation of `0..n` chosen by `seed` (Kensler 2013, as in pbrt's
 /// `PermutationElement`): a bijection without storing the permutation.
-pub fn permutation_element(mut i: u32, n: u32, seed: u32) -> u32 {
-    let p = seed;
-    let mut w = n.wrapping_sub(1);
-    w |= w >> 1;
-    w |= w >> 2;
-    w |= w >> 4;
-    w |= w >> 8;
-    w |= w >> 16;
-    loop {
-        i ^= p;
-        i = i.wrapping_mul(0xe170_893d);
-        i ^= p >> 16;
-        i ^= (i & w) >> 4;
-        i ^= p >> 8;
-        i = i.wrapping_mul(0x0929_eb3f);
-        i ^= p >> 23;
-        i ^= (i & w) >> 1;
-        i = i.wrapping_mul(1 | p >> 27);
-        i = i.wrapping_mul(0x6935_fa69);
-        i ^= (i & w) >> 11;
-        i = i.wrapping_mul(0x74dc_b303);
-        i ^= (i & w) >> 2;
-        i = i.wrapping_mul(0x9e50_1cc3);
-        i ^= (i & w) >> 2;
-        i = i.wrapping_mul(0xc860_a3df);
-        i &= w;
-        i ^= i >> 5;
-        if i < n {
-            break;
-        }
+pub fn permutation_element(i: u32, n: u32, seed: u32) -> u32 {
+    Permutation::new(n).element(i, seed)
+}
+
+/// The permutations of `0..n` that `permutation_element` draws, with the bit mask their walk
+/// needs worked out once (a sampler draws from one `n` a few dozen times a sample).
+#[derive(Clone, Copy, Debug)]
+pub struct Permutation {
+    n: u32,
+    /// All bits up to `n - 1`'s highest.
+    mask: u32,
+}
+
+impl Permutation {
+    pub fn new(n: u32) -> Self {
+        let mut w = n.wrapping_sub(1);
+        w |= w >> 1;
+        w |= w >> 2;
+        w |= w >> 4;
+        w |= w >> 8;
+        w |= w >> 16;
+        Self { n, mask: w }
     }
-    rem(i as u64 + p as u64, n)
+
+    /// Element `i` (below `n`) of the permutation chosen by `seed`.
+    #[inline]
+    pub fn element(&self, mut i: u32, seed: u32) -> u32 {
+        let (p, w, n) = (seed, self.mask, self.n);
+        loop {
+            i ^= p;
+            i = i.wrapping_mul(0xe170_893d);
+            i ^= p >> 16;
+            i ^= (i & w) >> 4;
+            i ^= p >> 8;
+            i = i.wrapping_mul(0x0929_eb3f);
+            i ^= p >> 23;
+            i ^= (i & w) >> 1;
+            i = i.wrapping_mul(1 | p >> 27);
+            i = i.wrapping_mul(0x6935_fa69);
+            i ^= (i & w) >> 11;
+            i = i.wrapping_mul(0x74dc_b303);
+            i ^= (i & w) >> 2;
+            i = i.wrapping_mul(0x9e50_1cc3);
+            i ^= (i & w) >> 2;
+            i = i.wrapping_mul(0xc860_a3df);
+            i &= w;
+            i ^= i >> 5;
+            if i < n {
+                break;
+            }
+        }
+        rem(i as u64 + p as u64, n)
+    }
 }
 
 /// `x % n`, by a mask where `n` is a power of two (every pass size a user is likely to pick): the
