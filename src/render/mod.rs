@@ -289,6 +289,22 @@ impl Ctx<'_> {
         rays
     }
 
+    /// The camera ray of pixel (x, y)'s sample at `u` in the pixel, made in `slot` (`camera_ray`);
+    /// returns the filter's offset and weight for it.
+    #[inline(always)]
+    fn pixel_ray(
+        &self,
+        (x, y): (usize, usize),
+        u: Vec2,
+        sampler: &mut AnySampler,
+        slot: &mut Ray,
+    ) -> (Vec2, f32) {
+        let (offset, w) = self.filter.sample(u);
+        let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
+        self.camera_ray(film, sampler, slot);
+        (offset, w)
+    }
+
     /// The camera ray through `film` with its seed, as `Integrator::li` takes it, made in `slot`:
     /// a ray rebuilt around its seed and then copied read the seed's narrow store back through
     /// wide loads, a store-forwarding stall on every camera ray (with the camera inlined, a view of
@@ -325,9 +341,7 @@ impl Ctx<'_> {
                 }
                 sampler.start(x as u32, y as u32, i);
                 let u = sampler.get_2d(Dim::Pixel, 0);
-                let (offset, w) = self.filter.sample(u);
-                let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
-                self.camera_ray(film, sampler, &mut cam[n]);
+                let (offset, w) = self.pixel_ray((x, y), u, sampler, &mut cam[n]);
                 takes[n] = CameraSample {
                     index: i,
                     u,
@@ -437,9 +451,7 @@ impl Ctx<'_> {
                     .then(|| sampler.get_2d_extension(Dim::Pixel, 0, j as u32))
                     .flatten();
                 let u = extended.unwrap_or_else(|| emission_split::companion(u, j));
-                let (offset, w) = self.filter.sample(u);
-                let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
-                self.camera_ray(film, sampler, &mut rays[m]);
+                let (_, w) = self.pixel_ray((x, y), u, sampler, &mut rays[m]);
                 weights[m] = w;
                 m += 1;
             }

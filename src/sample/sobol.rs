@@ -212,10 +212,9 @@ fn to_unit(x: u32) -> f32 {
 #[derive(Clone, Debug)]
 pub struct SobolSampler {
     seed: u64,
-    /// Samples a pixel takes per pass: the indices that each dimension's permutation shuffles.
-    pass: u32,
-    /// The permutations of a pass's indices.
-    permutation: Permutation,
+    /// The permutations of the indices of a pass (the samples a pixel takes per pass), which
+    /// each dimension shuffles.
+    pass: Permutation,
     keys: PixelKey,
     pixel: u64,
     /// The sample's place in its pass, and the index its pass starts at.
@@ -230,8 +229,7 @@ impl SobolSampler {
     pub fn new(seed: u64, pass: u32) -> Self {
         Self {
             seed,
-            pass: pass.max(1),
-            permutation: Permutation::new(pass.max(1)),
+            pass: Permutation::new(pass.max(1)),
             keys: PixelKey::default(),
             pixel: 0,
             slot: 0,
@@ -272,7 +270,7 @@ impl SobolSampler {
     fn shuffled(&self, shuffle: u64) -> u32 {
         self.first
             + self
-                .permutation
+                .pass
                 .element(self.slot, (shuffle ^ self.pass_key) as u32)
     }
 
@@ -285,7 +283,7 @@ impl SobolSampler {
 impl Sampler for SobolSampler {
     fn start(&mut self, x: u32, y: u32, index: u32) {
         self.pixel = self.keys.of(self.seed, x, y);
-        self.slot = rem(index as u64, self.pass);
+        self.slot = rem(index as u64, self.pass.len());
         self.first = index - self.slot;
         // The first pass's key is 0 (mix64 fixes 0).
         self.pass_key = mix64(self.first as u64);
@@ -317,7 +315,9 @@ impl Sampler for SobolSampler {
             return None;
         }
         let own = self.hash(dim.index(bounce));
-        let index = self.shuffled(own).wrapping_add(j.wrapping_mul(self.pass));
+        let index = self
+            .shuffled(own)
+            .wrapping_add(j.wrapping_mul(self.pass.len()));
         let (x, y) = self.point(index, own, 0, true);
         Some(Vec2::new(to_unit(x), to_unit(y)))
     }

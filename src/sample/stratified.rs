@@ -111,6 +111,11 @@ impl Permutation {
         Self { n, mask: w }
     }
 
+    /// The number of elements, `n`.
+    pub fn len(&self) -> u32 {
+        self.n
+    }
+
     /// Element `i` (below `n`) of the permutation chosen by `seed`.
     #[inline]
     pub fn element(&self, mut i: u32, seed: u32) -> u32 {
