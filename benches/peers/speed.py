@@ -228,39 +228,36 @@ def timed_glint(cmd):
     return float(m.group(1))
 
 
-def glint_gltf(a, scene, out, seed, light_sampler=None):
+def glint_command(a, parts, out, seed, light_sampler=None):
+    """glint's command line for the scene `parts` (OBJ parts, or a glTF scene's dict) and the image it
+    writes (profile.py runs the same command under perf)."""
     exr = out / f"glint{'_' + light_sampler if light_sampler else ''}_{seed}.exr"
-    cmd = [a.glint, "render", str(scene["gltf"]), "-o", str(exr), "--width", str(a.width), "--height",
-           str(a.height), "--spp", str(a.spp), "--max-depth", str(a.depth), "--seed", str(seed), "--filter", "box",
-           "--threads", str(a.threads), "--default-lights", "off", "--env", str(scene["env"]), "--up", "0,1,0",
-           "--backend", "embree", *scene["view"]]
+    if isinstance(parts, dict):
+        source, extra = str(parts["gltf"]), ["--env", str(parts["env"]), "--up", "0,1,0", *parts["view"]]
+    else:
+        toml = out / "scene.toml"
+        lines = [f"[camera]\nposition = {list(EYE)}\nlook_at = {list(LOOK_AT)}\nfov = {FOV}\n"]
+        for name, path, m in parts:
+            lines.append(f'[[material]]\nname = "{name}"\nbase_color = {m["colour"]}')
+            if m["kind"] == "metal":
+                lines.append(f"metallic = 1.0\nroughness = {m['roughness']}")
+            else:
+                lines.append("metallic = 0.0\nroughness = 1.0\nspecular = 0.0")
+            if m["kind"] == "emitter":
+                lines.append(f"emissive = {m['radiance']}")
+            lines.append(f'\n[[asset]]\npath = "{path.name}"\nmaterial = "{name}"\n')
+        toml.write_text("\n".join(lines))
+        source, extra = str(toml), []
+    cmd = [a.glint, "render", source, "-o", str(exr), "--width", str(a.width), "--height", str(a.height),
+           "--spp", str(a.spp), "--max-depth", str(a.depth), "--seed", str(seed), "--filter", "box",
+           "--threads", str(a.threads), "--default-lights", "off", *extra, "--backend", "embree"]
     if light_sampler:
         cmd += ["--light-sampler", light_sampler]
-    t = timed_glint(cmd)
-    return read_exr(exr), t
+    return cmd, exr
 
 
 def glint(a, parts, out, seed, light_sampler=None):
-    if isinstance(parts, dict):
-        return glint_gltf(a, parts, out, seed, light_sampler)
-    toml = out / "scene.toml"
-    lines = [f"[camera]\nposition = {list(EYE)}\nlook_at = {list(LOOK_AT)}\nfov = {FOV}\n"]
-    for name, path, m in parts:
-        lines.append(f'[[material]]\nname = "{name}"\nbase_color = {m["colour"]}')
-        if m["kind"] == "metal":
-            lines.append(f"metallic = 1.0\nroughness = {m['roughness']}")
-        else:
-            lines.append("metallic = 0.0\nroughness = 1.0\nspecular = 0.0")
-        if m["kind"] == "emitter":
-            lines.append(f"emissive = {m['radiance']}")
-        lines.append(f'\n[[asset]]\npath = "{path.name}"\nmaterial = "{name}"\n')
-    toml.write_text("\n".join(lines))
-    exr = out / f"glint{'_' + light_sampler if light_sampler else ''}_{seed}.exr"
-    cmd = [a.glint, "render", str(toml), "-o", str(exr), "--width", str(a.width), "--height", str(a.height),
-           "--spp", str(a.spp), "--max-depth", str(a.depth), "--seed", str(seed), "--filter", "box",
-           "--threads", str(a.threads), "--default-lights", "off", "--backend", "embree"]
-    if light_sampler:
-        cmd += ["--light-sampler", light_sampler]
+    cmd, exr = glint_command(a, parts, out, seed, light_sampler)
     t = timed_glint(cmd)
     return read_exr(exr), t
 
