@@ -617,6 +617,18 @@ fn csg_objects_and_meshes_share_the_queries() {
                 .and_then(|h| h.csg())
                 .is_none_or(|(o, _)| o != 1));
         }
+        // Batched queries (Embree's eight-wide packets, through the CSG callbacks too) answer as
+        // single ones do.
+        let mut hits = vec![None; rays.len()];
+        let mut occluded = vec![false; rays.len()];
+        a.intersect_many(&rays, &mut hits);
+        a.occluded_many(&rays, &mut occluded);
+        for (i, r) in rays.iter().enumerate() {
+            assert_eq!(hits[i], a.intersect(r), "{name}: ray {i}");
+            assert_eq!(occluded[i], a.occluded(r), "{name}: ray {i}");
+        }
+        let csg_hits = hits.iter().filter(|h| h.is_some_and(|h| h.csg().is_some()));
+        assert!(csg_hits.count() > 100, "{name}: too few CSG hits to test");
     }
 }
 

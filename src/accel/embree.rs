@@ -734,18 +734,6 @@ impl EmbreeAccel {
         }
     }
 
-    /// Any-hit answers for many rays (one `rtcOccluded1` each); `out[i]` is the answer for `rays[i]`.
-    pub fn occluded_batch(&self, rays: &[Ray], out: &mut [bool]) {
-        assert_eq!(rays.len(), out.len(), "one output slot per ray");
-        self.query(rays, || {
-            for (i, (ray, slot)) in rays.iter().zip(out.iter_mut()).enumerate() {
-                let mut r = rtc_ray(ray, i as u32);
-                self.occluded1(&mut r);
-                *slot = r.tfar == f32::NEG_INFINITY;
-            }
-        });
-    }
-
     fn intersect1(&self, rh: &mut RayHit) {
         // SAFETY: the top scene is committed; the pointer covers the whole padded 96-byte RayHit (the
         // 4.4 library writes past the 80-byte RTCRayHit of the bindings); NULL arguments are allowed.
@@ -769,6 +757,13 @@ impl EmbreeAccel {
                 ptr::null_mut(),
             )
         };
+    }
+
+    fn occluded8(&self, p: &mut RayHit8, valid: &Valid8) {
+        // SAFETY: the top scene is committed; an RTCRay8 (the same 384 bytes in 4.2 and 4.4) opens
+        // the packet, and occlusion writes only its `tfar` lanes; the valid mask is 32-byte aligned;
+        // NULL arguments are allowed.
+        unsafe { sys::rtcOccluded8(valid.0.as_ptr(), self.top, &mut p.rh.ray, ptr::null_mut()) };
     }
 
     fn occluded1(&self, ray: &mut sys::RTCRay) {
@@ -831,6 +826,22 @@ impl Accel for EmbreeAccel {
         self.query(std::slice::from_ref(ray), || self.occluded1(&mut r));
         // Embree marks an occluded ray by setting tfar to -inf.
         r.tfar == f32::NEG_INFINITY
+    }
+
+    /// Eight rays to a packet (`rtcOccluded8`), ids as in `intersect_many`.
+    fn occluded_many(&self, rays: &[Ray], out: &mut [bool]) {
+        assert_eq!(rays.len(), out.len(), "one output slot per ray");
+        self.query(rays, || {
+            for (k, (rays, out)) in rays.chunks(8).zip(out.chunks_mut(8)).enumerate() {
+                let mut p = RayHit8::zeroed();
+                let valid = p.load(rays, 8 * k as u32);
+                self.occluded8(&mut p, &valid);
+                for (lane, slot) in out.iter_mut().enumerate() {
+                    // Embree marks an occluded ray by setting tfar to -inf.
+                    *slot = p.rh.ray.tfar[lane] == f32::NEG_INFINITY;
+                }
+            }
+        });
     }
 
     fn memory_bytes(&self) -> usize {
@@ -946,7 +957,7 @@ mod tests {
             let mut hits = vec![None; rays.len()];
             let mut occ = vec![false; rays.len()];
             accel.intersect_many(&rays, &mut hits);
-            accel.occluded_batch(&rays, &mut occ);
+            accel.occluded_many(&rays, &mut occ);
             for (i, ray) in rays.iter().enumerate() {
                 assert_eq!(hits[i], accel.intersect(ray), "ray {i}");
                 assert_eq!(occ[i], accel.occluded(ray), "ray {i}");
@@ -1013,8 +1024,16 @@ mod tests {
         assert!(serial.iter().all(|(h, o)| h.is_some() == *o));
         let mut batch = vec![None; rays.len()];
         accel.intersect_many(&rays, &mut batch);
+        let mut occluded = vec![false; rays.len()];
+        accel.occluded_many(&rays, &mut occluded);
         assert_eq!(
-            bits(&batch.iter().map(|h| (*h, h.is_some())).collect::<Vec<_>>()),
+            bits(
+                &batch
+                    .iter()
+                    .zip(&occluded)
+                    .map(|(h, &o)| (*h, o))
+                    .collect::<Vec<_>>()
+            ),
             bits(&serial)
         );
     }

@@ -45,6 +45,14 @@ pub trait Accel: Send + Sync {
             *slot = self.intersect(ray);
         }
     }
+    /// The any-hit answers of several rays, `out[i]` for `rays[i]`, as `occluded` gives them (Embree
+    /// answers eight at a time; renders do not call it: `glint bench rays` measures whether a
+    /// bounce's rays traced together would pay).
+    fn occluded_many(&self, rays: &[Ray], out: &mut [bool]) {
+        for (ray, slot) in rays.iter().zip(out) {
+            *slot = self.occluded(ray);
+        }
+    }
     /// Bytes held by the structure (for benchmarks).
     fn memory_bytes(&self) -> usize {
         0

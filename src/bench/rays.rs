@@ -33,17 +33,29 @@ pub enum RayKind {
     /// packets, as renders trace each pixel's camera rays; one by one elsewhere). Its agreement
     /// column is the single rays' (the Embree tests hold packets to the single answers bit for bit).
     Packets,
+    /// The shadow rays eight neighbours at a time (`Accel::occluded_many`), as a bounce's shadow
+    /// rays would be if the paths of a pixel's samples went on together.
+    ShadowPackets,
+    /// The diffuse rays eight neighbours at a time, likewise.
+    DiffusePackets,
 }
 
 impl RayKind {
     /// The kinds traced one ray at a time.
     pub const SINGLE: [RayKind; 3] = [RayKind::Primary, RayKind::Shadow, RayKind::Diffuse];
-    pub const ALL: [RayKind; 4] = [
+    pub const ALL: [RayKind; 6] = [
         RayKind::Primary,
         RayKind::Shadow,
         RayKind::Diffuse,
         RayKind::Packets,
+        RayKind::ShadowPackets,
+        RayKind::DiffusePackets,
     ];
+
+    /// Whether the rays are any-hit queries.
+    pub fn any_hit(self) -> bool {
+        matches!(self, RayKind::Shadow | RayKind::ShadowPackets)
+    }
 }
 
 impl fmt::Display for RayKind {
@@ -53,6 +65,8 @@ impl fmt::Display for RayKind {
             RayKind::Shadow => "shadow",
             RayKind::Diffuse => "diffuse",
             RayKind::Packets => "packets",
+            RayKind::ShadowPackets => "shadow-packets",
+            RayKind::DiffusePackets => "diffuse-packets",
         })
     }
 }
@@ -107,8 +121,8 @@ impl RaySets {
     pub fn get(&self, kind: RayKind) -> &[Ray] {
         match kind {
             RayKind::Primary | RayKind::Packets => &self.primary,
-            RayKind::Shadow => &self.shadow,
-            RayKind::Diffuse => &self.diffuse,
+            RayKind::Shadow | RayKind::ShadowPackets => &self.shadow,
+            RayKind::Diffuse | RayKind::DiffusePackets => &self.diffuse,
         }
     }
 }
@@ -175,7 +189,10 @@ fn trace(accel: &dyn Accel, rays: &[Ray], kind: RayKind) -> usize {
     rays.par_chunks(1024)
         .map(|c| match kind {
             RayKind::Shadow => c.iter().filter(|r| accel.occluded(r)).count(),
-            RayKind::Packets => {
+            RayKind::Primary | RayKind::Diffuse => {
+                c.iter().filter(|r| accel.intersect(r).is_some()).count()
+            }
+            RayKind::Packets | RayKind::DiffusePackets => {
                 let mut hits = [None; 8];
                 c.chunks(8)
                     .map(|p| {
@@ -184,8 +201,14 @@ fn trace(accel: &dyn Accel, rays: &[Ray], kind: RayKind) -> usize {
                     })
                     .sum()
             }
-            RayKind::Primary | RayKind::Diffuse => {
-                c.iter().filter(|r| accel.intersect(r).is_some()).count()
+            RayKind::ShadowPackets => {
+                let mut occluded = [false; 8];
+                c.chunks(8)
+                    .map(|p| {
+                        accel.occluded_many(p, &mut occluded[..p.len()]);
+                        occluded[..p.len()].iter().filter(|&&o| o).count()
+                    })
+                    .sum()
             }
         })
         .sum()
@@ -227,7 +250,7 @@ pub fn run(input: &Input, config: &RaysConfig) -> Result<Report> {
         let mut kinds = Vec::new();
         for &kind in &config.kinds {
             let rays = sets.get(kind);
-            let any_hit = kind == RayKind::Shadow;
+            let any_hit = kind.any_hit();
             let mut mrays = Vec::new();
             for &threads in &config.threads {
                 let pool = rayon::ThreadPoolBuilder::new()
@@ -302,7 +325,7 @@ impl Report {
             .unwrap_or_default();
         let _ = write!(
             s,
-            "{:<11} {:<8} {:>9} {:>9} {:>9}",
+            "{:<11} {:<15} {:>9} {:>9} {:>9}",
             "backend", "kind", "rays", "build ms", "memory MB"
         );
         for t in &threads {
@@ -313,7 +336,7 @@ impl Report {
             for k in &r.kinds {
                 let _ = write!(
                     s,
-                    "{:<11} {:<8} {:>9} {:>9.1} {:>9.1}",
+                    "{:<11} {:<15} {:>9} {:>9.1} {:>9.1}",
                     r.backend.to_string(),
                     k.kind.to_string(),
                     k.rays,

@@ -162,7 +162,7 @@ pub struct RaysArgs {
     /// Backends, comma separated (default: all built in, Embree both robust and fast).
     #[arg(long, value_enum, value_delimiter = ',')]
     pub backend: Vec<Backend>,
-    /// Ray kinds, comma separated: primary, shadow, diffuse, packets.
+    /// Ray kinds, comma separated: primary, shadow, diffuse, packets, shadow-packets, diffuse-packets.
     #[arg(long, value_delimiter = ',', default_values_t = RayKind::ALL)]
     pub kinds: Vec<RayKind>,
     /// Thread counts to measure, comma separated.
