@@ -94,8 +94,9 @@ pub struct Bvh {
     nodes: Vec<NodeW>,
     /// World-space triangles in packets of four, with their identities; a leaf is a run of packets.
     packets: Vec<Packet>,
-    /// The box around the root's children (lower, upper corner), tested before a walk.
-    bounds: [[f32; 3]; 2],
+    /// The box around the root's children (lower, upper corner), tested before a walk; a fourth
+    /// lane of -inf and inf for `box_entered`.
+    bounds: [[f32; 4]; 2],
     /// Whether the CPU has AVX, for the 8-lane box test.
     #[cfg(target_arch = "x86_64")]
     avx: bool,
@@ -137,18 +138,18 @@ impl Bvh {
                 &mut out,
             );
         }
-        let bounds = out.nodes.first().map_or([[0.0; 3]; 2], |root| {
-            let [lo, hi] = [0, 3].map(|row| {
-                std::array::from_fn(|a| {
-                    let lanes = root.b[row + a].iter().copied();
-                    if row == 0 {
-                        lanes.fold(f32::INFINITY, f32::min)
-                    } else {
-                        lanes.fold(f32::NEG_INFINITY, f32::max)
-                    }
-                })
-            });
-            [lo, hi]
+        let bounds = out.nodes.first().map_or([[0.0; 4]; 2], |root| {
+            let side = |row: usize, whole: f32, pick: fn(f32, f32) -> f32| {
+                let mut b = [whole; 4];
+                for (a, x) in b.iter_mut().take(3).enumerate() {
+                    *x = root.b[row + a].iter().copied().fold(-whole, pick);
+                }
+                b
+            };
+            [
+                side(0, f32::NEG_INFINITY, f32::min),
+                side(3, f32::INFINITY, f32::max),
+            ]
         });
         Self {
             nodes: out.nodes,
@@ -206,18 +207,25 @@ impl Bvh {
     /// camera rays miss it six times in seven, that setup was the BVH's deficit against Embree.
     #[inline(always)]
     fn box_entered(&self, ray: &Ray) -> bool {
-        let (o, inv) = (ray.o.to_array(), ray.d.recip().to_array());
-        let [lo, hi] = self.bounds;
-        let (mut tn, mut tf) = (ray.t_min, f32::INFINITY);
-        for (((o, inv), lo), hi) in o.into_iter().zip(inv).zip(lo).zip(hi) {
-            let (near, far) = if inv < 0.0 { (hi, lo) } else { (lo, hi) };
-            // As `Lanes::max` and `Lanes::min`: a NaN distance keeps the running bound.
-            let t = (near - o) * inv;
-            tn = if t > tn { t } else { tn };
-            let t = (far - o) * inv;
-            tf = if t < tf { t } else { tf };
-        }
-        let tf = tf * FAR_SCALE;
+        // Four lanes: x, y, z and one whose box is all of space (its distances are -inf and inf,
+        // which the running bounds ignore). Each bound is a minimum or maximum over a set, so
+        // taking it across lanes gives the walk's sequential answer.
+        let [lo, hi] = self.bounds.map(|r| F4::load(&r));
+        let o = F4::load(&[ray.o.x, ray.o.y, ray.o.z, 0.0]);
+        let inv = F4::splat(1.0) / F4::load(&[ray.d.x, ray.d.y, ray.d.z, 1.0]);
+        let (t_lo, t_hi) = ((lo - o) * inv, (hi - o) * inv);
+        let backwards = inv.lt(F4::splat(0.0));
+        // As in the walk, a NaN distance (0 * inf on a plane) keeps the running bound.
+        let tn = backwards
+            .select(t_hi, t_lo)
+            .max(F4::splat(ray.t_min))
+            .to_array();
+        let tf = backwards
+            .select(t_lo, t_hi)
+            .min(F4::splat(f32::INFINITY))
+            .to_array();
+        let tn = tn[0].max(tn[1]).max(tn[2]).max(tn[3]);
+        let tf = tf[0].min(tf[1]).min(tf[2]).min(tf[3]) * FAR_SCALE;
         tn <= if tf < ray.t_max { tf } else { ray.t_max }
     }
 
@@ -972,7 +980,7 @@ mod tests {
             .collect();
         let bvh = Bvh::new(tris.clone(), ids);
         let scene = Scene::default();
-        let [lo, hi] = bvh.bounds.map(Vec3::from_array);
+        let [lo, hi] = bvh.bounds.map(|r| Vec3::from_slice(&r));
         let mut origins = Vec::new();
         for k in 0..27u32 {
             // Each axis at the lower face, the middle or the upper face.
