@@ -734,6 +734,28 @@ impl EmbreeAccel {
         }
     }
 
+    /// Queries `rays` eight to a packet with `trace` and reads each lane's answer into `out` with
+    /// `answer`; a ray's id is its index in `rays`, where the alpha filter finds the world ray.
+    fn in_packets<T>(
+        &self,
+        rays: &[Ray],
+        out: &mut [T],
+        trace: impl Fn(&mut RayHit8, &Valid8),
+        answer: impl Fn(&RayHit8, usize) -> T,
+    ) {
+        assert_eq!(rays.len(), out.len(), "one output slot per ray");
+        self.query(rays, || {
+            for (k, (rays, out)) in rays.chunks(8).zip(out.chunks_mut(8)).enumerate() {
+                let mut p = RayHit8::zeroed();
+                let valid = p.load(rays, 8 * k as u32);
+                trace(&mut p, &valid);
+                for (lane, slot) in out.iter_mut().enumerate() {
+                    *slot = answer(&p, lane);
+                }
+            }
+        });
+    }
+
     fn intersect1(&self, rh: &mut RayHit) {
         // SAFETY: the top scene is committed; the pointer covers the whole padded 96-byte RayHit (the
         // 4.4 library writes past the 80-byte RTCRayHit of the bindings); NULL arguments are allowed.
@@ -804,20 +826,14 @@ impl Accel for EmbreeAccel {
         rh.hit(self.csg_base)
     }
 
-    /// Eight rays to a packet (`rtcIntersect8`); the ray id indexes `rays`, where the alpha
-    /// filter finds the world ray.
+    /// Eight rays to a packet (`rtcIntersect8`).
     fn intersect_many(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
-        assert_eq!(rays.len(), out.len(), "one output slot per ray");
-        self.query(rays, || {
-            for (k, (rays, out)) in rays.chunks(8).zip(out.chunks_mut(8)).enumerate() {
-                let mut p = RayHit8::zeroed();
-                let valid = p.load(rays, 8 * k as u32);
-                self.intersect8(&mut p, &valid);
-                for (lane, slot) in out.iter_mut().enumerate() {
-                    *slot = p.hit(lane, self.csg_base);
-                }
-            }
-        });
+        self.in_packets(
+            rays,
+            out,
+            |p, valid| self.intersect8(p, valid),
+            |p, lane| p.hit(lane, self.csg_base),
+        );
     }
 
     #[inline]
@@ -828,20 +844,15 @@ impl Accel for EmbreeAccel {
         r.tfar == f32::NEG_INFINITY
     }
 
-    /// Eight rays to a packet (`rtcOccluded8`), ids as in `intersect_many`.
+    /// Eight rays to a packet (`rtcOccluded8`).
     fn occluded_many(&self, rays: &[Ray], out: &mut [bool]) {
-        assert_eq!(rays.len(), out.len(), "one output slot per ray");
-        self.query(rays, || {
-            for (k, (rays, out)) in rays.chunks(8).zip(out.chunks_mut(8)).enumerate() {
-                let mut p = RayHit8::zeroed();
-                let valid = p.load(rays, 8 * k as u32);
-                self.occluded8(&mut p, &valid);
-                for (lane, slot) in out.iter_mut().enumerate() {
-                    // Embree marks an occluded ray by setting tfar to -inf.
-                    *slot = p.rh.ray.tfar[lane] == f32::NEG_INFINITY;
-                }
-            }
-        });
+        self.in_packets(
+            rays,
+            out,
+            |p, valid| self.occluded8(p, valid),
+            // Embree marks an occluded ray by setting tfar to -inf.
+            |p, lane| p.rh.ray.tfar[lane] == f32::NEG_INFINITY,
+        );
     }
 
     fn memory_bytes(&self) -> usize {
