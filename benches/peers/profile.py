@@ -27,8 +27,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import speed  # noqa: E402  (beside this file)
 
 # Functions of glint's binary that load the scene or write the image: not the render's time.
-LOAD_WRITE = re.compile(r"tobj::|zune_|png::|exr::|gltf|image::|miniz|fdeflate|inflate|zune|flate2|"
-                        r"dec2flt|from_utf8|crc32|toml|serde|basisu|draco|meshopt|webp")
+LOAD_WRITE = re.compile(r"tobj::|zune|png::|exr::|gltf|image::|miniz|inflate|flate2|dec2flt|from_utf8|"
+                        r"crc32|toml|serde|basisu|draco|meshopt|webp")
 
 
 def groups(report):

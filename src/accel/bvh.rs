@@ -88,6 +88,22 @@ struct NodeW {
     count: [u32; W],
 }
 
+impl NodeW {
+    /// The box around the node's children (lower and upper corner, exact minima and maxima of
+    /// theirs; empty lanes drop out), with a fourth lane of -inf and inf: all of space.
+    fn enclosure(&self) -> [[f32; 4]; 2] {
+        let (mut lo, mut hi) = ([f32::NEG_INFINITY; 4], [f32::INFINITY; 4]);
+        for (a, (lo, hi)) in lo.iter_mut().zip(&mut hi).take(3).enumerate() {
+            *lo = self.b[a].iter().copied().fold(f32::INFINITY, f32::min);
+            *hi = self.b[3 + a]
+                .iter()
+                .copied()
+                .fold(f32::NEG_INFINITY, f32::max);
+        }
+        [lo, hi]
+    }
+}
+
 /// The 8-wide BVH over a set of triangles.
 pub struct Bvh {
     /// Root at index 0 (absent for an empty scene).
@@ -138,19 +154,7 @@ impl Bvh {
                 &mut out,
             );
         }
-        let bounds = out.nodes.first().map_or([[0.0; 4]; 2], |root| {
-            let side = |row: usize, whole: f32, pick: fn(f32, f32) -> f32| {
-                let mut b = [whole; 4];
-                for (a, x) in b.iter_mut().take(3).enumerate() {
-                    *x = root.b[row + a].iter().copied().fold(-whole, pick);
-                }
-                b
-            };
-            [
-                side(0, f32::NEG_INFINITY, f32::min),
-                side(3, f32::INFINITY, f32::max),
-            ]
-        });
+        let bounds = out.nodes.first().map_or([[0.0; 4]; 2], NodeW::enclosure);
         Self {
             nodes: out.nodes,
             packets: out.packets,
@@ -964,8 +968,9 @@ mod tests {
 
     /// The box test never turns away a ray that the walk would find a hit for: rays from the box's
     /// faces, edges and corners exactly, along and across its planes (with +0 and -0 direction
-    /// components, whose slab distances are infinite or NaN), and random rays; and it does turn
-    /// away rays that miss the box (else it would save nothing).
+    /// components, whose slab distances are infinite or NaN), rays in its rim through the
+    /// triangles that make its faces, and random rays; and it does turn away rays that miss the
+    /// box (else it would save nothing).
     #[test]
     fn box_test_keeps_every_ray_the_walk_hits() {
         let mut next = rng(17);
@@ -1018,6 +1023,20 @@ mod tests {
             ] {
                 let o = target + (Vec3::new(next(), next(), next()) - 0.5).normalize() * 10.0;
                 rays.push(Ray::new(o, (target - o).normalize()));
+            }
+        }
+        // Through points of every triangle near its vertices, across one axis each (a +0 or -0
+        // component there): where the vertex makes a face of the box, the ray stays in its rim.
+        for t in &tris {
+            let c = (t[0] + t[1] + t[2]) / 3.0;
+            for &v in t {
+                let q = v + 0.001 * (c - v);
+                for a in 0..3 {
+                    let mut d = Vec3::new(next(), next(), next()) - 0.5;
+                    d[a] = if next() < 0.5 { 0.0 } else { -0.0 };
+                    let d = d.normalize();
+                    rays.push(Ray::new(q - d * 10.0, d));
+                }
             }
         }
         // Along each face, just inside it and exactly on it (with a +0 or -0 component across it):

@@ -12,7 +12,9 @@ use glam::{Mat4, Vec3, Vec4};
 use super::bvh::{Bvh, BvhAccel};
 use super::compare;
 use super::grid::GridAccel;
-use super::testing::{alpha_quads, brute, down, quad, rng, scene, scene_with, Brute};
+use super::testing::{
+    alpha_quads, assert_batches_match_single, brute, down, quad, rng, scene, scene_with, Brute,
+};
 use super::{Accel, Backend};
 use crate::csg::{CsgObject, Node, Shape};
 use crate::geometry::{Motion, Ray, CSG_BIT};
@@ -619,14 +621,7 @@ fn csg_objects_and_meshes_share_the_queries() {
         }
         // Batched queries (Embree's eight-wide packets, through the CSG callbacks too) answer as
         // single ones do.
-        let mut hits = vec![None; rays.len()];
-        let mut occluded = vec![false; rays.len()];
-        a.intersect_many(&rays, &mut hits);
-        a.occluded_many(&rays, &mut occluded);
-        for (i, r) in rays.iter().enumerate() {
-            assert_eq!(hits[i], a.intersect(r), "{name}: ray {i}");
-            assert_eq!(occluded[i], a.occluded(r), "{name}: ray {i}");
-        }
+        let hits = assert_batches_match_single(a.as_ref(), &rays, name);
         let csg_hits = hits.iter().filter(|h| h.is_some_and(|h| h.csg().is_some()));
         assert!(csg_hits.count() > 100, "{name}: too few CSG hits to test");
     }

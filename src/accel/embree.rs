@@ -868,7 +868,9 @@ impl Accel for EmbreeAccel {
 mod tests {
     // Queries are tested with every backend's in `accel::conformance`; here, Embree's own paths.
     use super::*;
-    use crate::accel::testing::{alpha_quads, down, quad, scene_with as scene_of};
+    use crate::accel::testing::{
+        alpha_quads, assert_batches_match_single, down, quad, scene_with as scene_of,
+    };
     use crate::scene::{AlphaMode, Instance, Material};
     use glam::{Mat4, Vec3, Vec4};
     use rayon::prelude::*;
@@ -965,14 +967,7 @@ mod tests {
                     }
                 })
                 .collect();
-            let mut hits = vec![None; rays.len()];
-            let mut occ = vec![false; rays.len()];
-            accel.intersect_many(&rays, &mut hits);
-            accel.occluded_many(&rays, &mut occ);
-            for (i, ray) in rays.iter().enumerate() {
-                assert_eq!(hits[i], accel.intersect(ray), "ray {i}");
-                assert_eq!(occ[i], accel.occluded(ray), "ray {i}");
-            }
+            assert_batches_match_single(&accel, &rays, "embree");
         }
     }
 

@@ -119,3 +119,17 @@ pub fn alpha_quads(mat: Material) -> Arc<Scene> {
         vec![Material::default(), mat],
     )
 }
+
+/// Asserts that `a`'s batched queries (`intersect_many`, `occluded_many`) answer each of `rays`
+/// as its single queries do; returns the batched closest hits.
+pub fn assert_batches_match_single(a: &dyn Accel, rays: &[Ray], name: &str) -> Vec<Option<Hit>> {
+    let mut hits = vec![None; rays.len()];
+    let mut occluded = vec![false; rays.len()];
+    a.intersect_many(rays, &mut hits);
+    a.occluded_many(rays, &mut occluded);
+    for (i, r) in rays.iter().enumerate() {
+        assert_eq!(hits[i], a.intersect(r), "{name}: ray {i}");
+        assert_eq!(occluded[i], a.occluded(r), "{name}: ray {i}");
+    }
+    hits
+}

@@ -75,7 +75,7 @@ pub fn run(input: &Input, width: usize, height: usize, max_rays: usize) -> Resul
         for (name, p) in CONFIGS {
             let list = ObjectList::build(scene.clone(), p, true);
             rays.par_iter().for_each(|r| {
-                if kind == RayKind::Shadow {
+                if kind.any_hit() {
                     list.occluded(r);
                 } else {
                     list.intersect(r);

@@ -193,23 +193,25 @@ fn trace(accel: &dyn Accel, rays: &[Ray], kind: RayKind) -> usize {
                 c.iter().filter(|r| accel.intersect(r).is_some()).count()
             }
             RayKind::Packets | RayKind::DiffusePackets => {
-                let mut hits = [None; 8];
-                c.chunks(8)
-                    .map(|p| {
-                        accel.intersect_many(p, &mut hits[..p.len()]);
-                        hits[..p.len()].iter().filter(|h| h.is_some()).count()
-                    })
-                    .sum()
+                in_packets(c, |p, out| accel.intersect_many(p, out), Option::is_some)
             }
-            RayKind::ShadowPackets => {
-                let mut occluded = [false; 8];
-                c.chunks(8)
-                    .map(|p| {
-                        accel.occluded_many(p, &mut occluded[..p.len()]);
-                        occluded[..p.len()].iter().filter(|&&o| o).count()
-                    })
-                    .sum()
-            }
+            RayKind::ShadowPackets => in_packets(c, |p, out| accel.occluded_many(p, out), |&o| o),
+        })
+        .sum()
+}
+
+/// Traces `rays` eight at a time with `query` and counts the answers `counts` keeps.
+fn in_packets<T: Copy + Default>(
+    rays: &[Ray],
+    query: impl Fn(&[Ray], &mut [T]),
+    counts: impl Fn(&T) -> bool,
+) -> usize {
+    let mut out = [T::default(); 8];
+    rays.chunks(8)
+        .map(|p| {
+            let out = &mut out[..p.len()];
+            query(p, out);
+            out.iter().filter(|a| counts(a)).count()
         })
         .sum()
 }
