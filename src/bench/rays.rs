@@ -238,52 +238,72 @@ pub fn run(input: &Input, config: &RaysConfig) -> Result<Report> {
         None
     };
 
-    let mut results = Vec::new();
-    for &backend in &config.backends {
-        let mut build_seconds = f64::INFINITY;
-        let mut built = None;
-        for _ in 0..config.repeat {
+    // Every backend is built, then timed in turn on each repetition (not all of one backend's
+    // runs, then the next's): this machine's speed drifts over seconds, and a drift between two
+
+    let mut builds: Vec<(f64, Option<Box<dyn Accel>>)> = config
+        .backends
+        .iter()
+        .map(|_| (f64::INFINITY, None))
+        .collect();
+    for _ in 0..config.repeat {
+        for (&backend, (seconds, built)) in config.backends.iter().zip(&mut builds) {
             let t = Instant::now();
             let a = accel::build(scene.clone(), backend)?;
-            build_seconds = build_seconds.min(t.elapsed().as_secs_f64());
-            built = Some(a);
+            *seconds = seconds.min(t.elapsed().as_secs_f64());
+            *built = Some(a);
         }
-        let accel = built.expect("repeat >= 1");
-        let mut kinds = Vec::new();
-        for &kind in &config.kinds {
-            let rays = sets.get(kind);
-            let any_hit = kind.any_hit();
-            let mut mrays = Vec::new();
-            for &threads in &config.threads {
-                let pool = rayon::ThreadPoolBuilder::new()
-                    .num_threads(threads)
-                    .build()
-                    .map_err(BenchError::ThreadPool)?;
-                let mut best = f64::INFINITY;
-                for _ in 0..config.repeat {
+    }
+    let accels: Vec<(f64, Box<dyn Accel>)> = builds
+        .into_iter()
+        .map(|(s, a)| (s, a.expect("repeat >= 1")))
+        .collect();
+    let mut kinds: Vec<Vec<KindResult>> = config.backends.iter().map(|_| Vec::new()).collect();
+    for &kind in &config.kinds {
+        let rays = sets.get(kind);
+        let mut mrays: Vec<Vec<(usize, f64)>> = accels.iter().map(|_| Vec::new()).collect();
+        for &threads in &config.threads {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .map_err(BenchError::ThreadPool)?;
+            let mut best = vec![f64::INFINITY; accels.len()];
+            for _ in 0..config.repeat {
+                for ((_, accel), best) in accels.iter().zip(&mut best) {
                     let t = Instant::now();
                     std::hint::black_box(pool.install(|| trace(accel.as_ref(), rays, kind)));
-                    best = best.min(t.elapsed().as_secs_f64());
+                    *best = best.min(t.elapsed().as_secs_f64());
                 }
-                mrays.push((threads, rays.len() as f64 / best.max(1e-9) / 1e6));
             }
-            let agreement = embree
-                .as_ref()
-                .map(|e| agreement(&scene, accel.as_ref(), e.as_ref(), rays, any_hit));
-            kinds.push(KindResult {
+            for (m, best) in mrays.iter_mut().zip(best) {
+                m.push((threads, rays.len() as f64 / best.max(1e-9) / 1e6));
+            }
+        }
+        for ((k, (_, accel)), mrays) in kinds.iter_mut().zip(&accels).zip(mrays) {
+            k.push(KindResult {
                 kind,
                 rays: rays.len(),
                 mrays,
-                agreement,
+                agreement: embree
+                    .as_ref()
+                    .map(|e| agreement(&scene, accel.as_ref(), e.as_ref(), rays, kind.any_hit())),
             });
         }
-        results.push(BackendResult {
-            backend,
-            build_seconds,
-            memory_bytes: accel.memory_bytes(),
-            kinds,
-        });
     }
+    let results = config
+        .backends
+        .iter()
+        .zip(accels)
+        .zip(kinds)
+        .map(
+            |((&backend, (build_seconds, accel)), kinds)| BackendResult {
+                backend,
+                build_seconds,
+                memory_bytes: accel.memory_bytes(),
+                kinds,
+            },
+        )
+        .collect();
     Ok(Report {
         input: input.to_string(),
         triangles: scene.triangle_count(),
