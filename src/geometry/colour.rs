@@ -1,5 +1,6 @@
-//! The sRGB transfer function, both ways: textures decode through it, PNG output encodes through it.
-//! The exact piecewise curves of IEC 61966-2-1, not a 2.2 gamma.
+//! Colour arithmetic on linear Rec. 709 values: the sRGB transfer function both ways (textures
+//! decode through it, PNG output encodes through it; the exact IEC 61966-2-1 curves, not a 2.2
+//! gamma), and relative luminance.
 
 pub fn srgb_to_linear(c: f32) -> f32 {
     if c <= 0.04045 {
@@ -28,4 +29,9 @@ mod tests {
             assert!((linear_to_srgb(srgb_to_linear(c)) - c).abs() < 1e-5);
         }
     }
+}
+
+/// Relative luminance of a linear Rec. 709 colour.
+pub fn luminance(c: glam::Vec3) -> f32 {
+    c.dot(glam::Vec3::new(0.2126, 0.7152, 0.0722))
 }

@@ -246,6 +246,4 @@ impl Bsdf {
     }
 }
 
-pub fn luminance(c: Vec3) -> f32 {
-    c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
-}
+pub use crate::geometry::colour::luminance;
