@@ -88,15 +88,42 @@ pub fn bounding_sphere(bounds: &Aabb) -> (Vec3, f32) {
     (bounds.center(), if r > 0.0 { r } else { 1.0 })
 }
 
+/// Emitting surfaces light the scene themselves when their flux is at least this share of the flux
+/// the default environment would send into the model's bounding sphere. Measured shares: the Cornell
+/// box 0.146 (its ceiling light), many-emitters 0.28, EmissiveStrengthTest 0.18 (glowing cubes, the
+/// model's subject); AnisotropyBarnLamp 0.024 (a bulb hidden in its shade: alone it lit nothing in
+/// view) and TextureEncodingTest 0.0045 (an emissive swatch among lit ones: alone the rest was black).
+pub const OWN_EMISSION_SHARE: f64 = 0.05;
+
 /// Whether the scene has light of its own: any `Light` (punctual, sphere, disk, rectangle or
-/// environment), or an untextured emissive material (a deliberate light source, as in a Cornell box).
-/// Textured emission (glowing details) does not count.
+/// environment), or untextured emissive surfaces bright and large enough to light it
+/// (`OWN_EMISSION_SHARE`, as in a Cornell box). Textured emission (glowing details) does not count.
 pub fn has_own_lights(scene: &Scene) -> bool {
-    !scene.lights.is_empty()
-        || scene.instances.iter().any(|i| {
-            let m = scene.material_of_mesh(i.mesh);
-            m.is_emissive() && m.emissive_tex.is_none()
-        })
+    !scene.lights.is_empty() || emission_share(scene) >= OWN_EMISSION_SHARE
+}
+
+/// The flux of the scene's untextured emissive triangles (luminance times area, both sides'
+/// factor of pi left out) over that of the default environment into the bounding sphere
+/// (`ENVIRONMENT_RADIANCE` times the sphere's area).
+pub fn emission_share(scene: &Scene) -> f64 {
+    let mut flux = 0.0f64;
+    for (i, inst) in scene.instances.iter().enumerate() {
+        let m = scene.material_of_mesh(inst.mesh);
+        if !m.is_emissive() || m.emissive_tex.is_some() {
+            continue;
+        }
+        let luminance = crate::geometry::colour::luminance(m.emissive) as f64;
+        let mesh = &scene.meshes[inst.mesh as usize];
+        let area: f64 = (0..mesh.indices.len() as u32)
+            .map(|prim| {
+                let [a, b, c] = scene.world_triangle(i as u32, prim);
+                0.5 * (b - a).cross(c - a).length() as f64
+            })
+            .sum();
+        flux += luminance * area;
+    }
+    let (_, r) = bounding_sphere(&scene.bounds());
+    flux / (ENVIRONMENT_RADIANCE as f64 * 4.0 * std::f64::consts::PI * (r as f64).powi(2))
 }
 
 /// A soft environment and a key light from above and to the left of the camera.
@@ -121,6 +148,58 @@ pub fn light_rig(camera_to_world: &Mat4) -> Vec<Light> {
 mod tests {
     use super::*;
     use crate::render::RayCamera;
+    use crate::scene::generate::{box_mesh, scene_of};
+    use crate::scene::{Instance, Material, TexRef};
+
+    /// A closed room (the box from -1 to 1) with a thin emissive slab of radiance `radiance` under
+    /// its ceiling, the whole scene scaled by `scale`.
+    fn room(radiance: f32, scale: f32) -> Scene {
+        let mut light = box_mesh(Vec3::new(-0.25, 0.98, -0.25), Vec3::new(0.25, 0.99, 0.25));
+        light.material = 1;
+        let to_world = Mat4::from_scale(Vec3::splat(scale));
+        let mut scene = scene_of(
+            vec![box_mesh(Vec3::splat(-1.0), Vec3::splat(1.0)), light],
+            vec![Instance::new(0, to_world), Instance::new(1, to_world)],
+        );
+        scene.materials.push(Material {
+            emissive: Vec3::splat(radiance),
+            ..Default::default()
+        });
+        scene
+    }
+
+    /// The share is the slab's luminance times its area over the default environment's radiance
+    /// times the bounding sphere's area, at any scale; a bright ceiling light is the room's own
+    /// light, a dim one is not, nor is a textured one however bright, and a punctual light always is.
+    #[test]
+    fn emitters_light_the_scene_when_their_flux_is_large_enough() {
+        let area = 2.0 * (0.5 * 0.5 + 2.0 * 0.5 * 0.01);
+        let sphere = 4.0 * std::f64::consts::PI * 3.0;
+        for scale in [1.0, 2.0, 0.01] {
+            let share = emission_share(&room(10.0, scale));
+            let expected = 10.0 * area / (ENVIRONMENT_RADIANCE as f64 * sphere);
+            assert!(
+                (share / expected - 1.0).abs() < 1e-4,
+                "scale {scale}: {share} against {expected}"
+            );
+        }
+        assert!(has_own_lights(&room(10.0, 1.0)));
+        assert!(!has_own_lights(&room(0.5, 1.0)));
+        let mut textured = room(10.0, 1.0);
+        textured.materials[1].emissive_tex = Some(TexRef {
+            texture: 0,
+            uv_transform: TexRef::IDENTITY_UV,
+            tex_coord: 0,
+        });
+        assert_eq!(emission_share(&textured), 0.0);
+        let mut lit = room(0.0, 1.0);
+        lit.lights.push(Light::Directional(DirectionalLight {
+            direction: -Vec3::Y,
+            irradiance: Vec3::ONE,
+        }));
+        assert!(has_own_lights(&lit));
+        assert!(!has_own_lights(&room(0.0, 1.0)));
+    }
 
     #[test]
     fn framed_box_is_inside_the_image() {
