@@ -18,6 +18,11 @@ pub fn linear_to_srgb(c: f32) -> f32 {
     }
 }
 
+/// Relative luminance of a linear Rec. 709 colour.
+pub fn luminance(c: glam::Vec3) -> f32 {
+    c.dot(glam::Vec3::new(0.2126, 0.7152, 0.0722))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -29,9 +34,4 @@ mod tests {
             assert!((linear_to_srgb(srgb_to_linear(c)) - c).abs() < 1e-5);
         }
     }
-}
-
-/// Relative luminance of a linear Rec. 709 colour.
-pub fn luminance(c: glam::Vec3) -> f32 {
-    c.dot(glam::Vec3::new(0.2126, 0.7152, 0.0722))
 }
