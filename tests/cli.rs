@@ -154,6 +154,27 @@ fn bad_invocations_fail_with_a_message_and_leave_no_file() {
             vec!["render", demo, "-o", out, "--shutter", "0.1,0"],
             "OPEN <= CLOSE",
         ),
+        // NaN and infinities in numeric flags used to run on into black images.
+        (
+            vec!["render", demo, "-o", out, "--exposure", "nan"],
+            "'nan': expected a finite number",
+        ),
+        (
+            vec!["render", demo, "-o", out, "--frame-time", "inf"],
+            "'inf': expected a finite number",
+        ),
+        (
+            vec!["render", demo, "-o", out, "--filter-radius", "1e30"],
+            "above 0 and at most 16",
+        ),
+        (
+            vec!["render", demo, "-o", out, "--filter-radius", "0"],
+            "above 0 and at most 16",
+        ),
+        (
+            vec!["turntable", demo, "-o", out, "--elevation", "NaN"],
+            "'NaN': expected a finite number",
+        ),
     ];
     for (args, needle) in cases {
         let o = glint(&args);

@@ -7,6 +7,7 @@ use glam::Vec3;
 use crate::accel::Backend;
 use crate::film::aov::FeatureImages;
 use crate::film::denoise::{DenoiseError, DenoiseOptions, DenoiseQuality, Denoiser, GuideMode};
+use crate::film::filter::MAX_RADIUS;
 use crate::film::{Display, Image, ViewTransform};
 use crate::render::job::{DefaultLights, LensOptions, Overrides, Time};
 use crate::scene::{GgxScattering, Layering, SceneChoice, UpAxis};
@@ -43,10 +44,10 @@ pub struct Args {
     #[arg(long)]
     pub seed: Option<u64>,
     /// Vertical field of view in degrees.
-    #[arg(long)]
+    #[arg(value_parser = finite, long)]
     pub fov: Option<f32>,
     /// Exposure in stops, applied to PNG output (the same on every frame of a sequence).
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    #[arg(value_parser = finite, long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub exposure: f32,
     /// View transform of PNG output and previews, after the exposure (EXR stays linear).
     #[arg(long, value_enum, default_value_t = ViewTransform::KhronosPbrNeutral)]
@@ -179,14 +180,14 @@ impl DenoiseArgs {
 #[derive(clap::Args, Debug, Default)]
 pub struct LensArgs {
     /// Lens aperture radius in scene units (a thin lens; 0 or absent = pinhole).
-    #[arg(long, conflicts_with = "fstop")]
+    #[arg(value_parser = finite, long, conflicts_with = "fstop")]
     pub aperture: Option<f32>,
     /// Lens f-number; the focal length comes from the vertical field of view on a 24 mm (full-frame)
     /// sensor with scene units in metres: f = 12 mm / tan(fov / 2), aperture radius f / (2 N).
-    #[arg(long)]
+    #[arg(value_parser = finite, long)]
     pub fstop: Option<f32>,
     /// Distance of the plane in focus, along the view axis (default: the model's centre).
-    #[arg(long, conflicts_with = "focus_on")]
+    #[arg(value_parser = finite, long, conflicts_with = "focus_on")]
     pub focus_distance: Option<f32>,
     /// Focus on what pixel X,Y sees (its depth along the view axis).
     #[arg(long, value_parser = parse_pixel)]
@@ -212,7 +213,7 @@ pub struct TimeArgs {
     #[arg(long, value_parser = parse_shutter, allow_hyphen_values = true)]
     pub shutter: Option<[f32; 2]>,
     /// Seconds into the file's animation at which the frame is taken.
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    #[arg(value_parser = finite, long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub frame_time: f32,
     /// Which of the file's animations plays, by index (default: the first).
     #[arg(long, default_value_t = 0)]
@@ -226,6 +227,26 @@ impl TimeArgs {
             frame_time: self.frame_time,
             shutter: self.shutter.unwrap_or([0.0, 0.0]),
         }
+    }
+}
+
+/// Parses a finite number: NaN or an infinity in a numeric flag would run on into a black or empty
+/// image rather than an error.
+pub fn finite(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        Ok(_) => Err(format!("'{s}': expected a finite number")),
+        Err(e) => Err(format!("'{s}': {e}")),
+    }
+}
+
+/// Parses a reconstruction filter's radius in pixels: above 0 and at most `MAX_RADIUS`.
+pub fn filter_radius(s: &str) -> Result<f32, String> {
+    match finite(s)? {
+        r if r > 0.0 && r <= MAX_RADIUS => Ok(r),
+        _ => Err(format!(
+            "'{s}': expected a radius in pixels above 0 and at most {MAX_RADIUS}"
+        )),
     }
 }
 

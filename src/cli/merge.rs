@@ -16,7 +16,7 @@ pub struct MergeArgs {
     #[arg(short, long)]
     pub output: PathBuf,
     /// Exposure in stops for a PNG output.
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    #[arg(value_parser = super::args::finite, long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub exposure: f32,
     /// View transform for a PNG output.
     #[arg(long, value_enum, default_value_t = film::ViewTransform::KhronosPbrNeutral)]

@@ -45,10 +45,10 @@ pub struct RenderArgs {
     #[arg(long, value_name = "FILE.exr|.hdr")]
     pub env: Option<PathBuf>,
     /// Multiplier on the --env map's radiance.
-    #[arg(long, default_value_t = 1.0, requires = "env")]
+    #[arg(value_parser = super::args::finite, long, default_value_t = 1.0, requires = "env")]
     pub env_strength: f32,
     /// Turn the --env map about +Y by this many degrees (counter-clockwise seen from above).
-    #[arg(
+    #[arg(value_parser = super::args::finite, 
         long,
         default_value_t = 0.0,
         allow_hyphen_values = true,
@@ -75,7 +75,7 @@ pub struct RenderArgs {
     #[arg(long, value_enum)]
     pub filter: Option<FilterKind>,
     /// Filter radius in pixels (default: box 0.5, tent 1, gaussian 1.5, mitchell 2).
-    #[arg(long)]
+    #[arg(value_parser = super::args::filter_radius, long)]
     pub filter_radius: Option<f32>,
     /// Adaptive sampling: rounds until the image's estimated relative RMS error is under
     /// --target-error, samples going where they cut the error most per ray; converged pixels stop.
@@ -86,7 +86,7 @@ pub struct RenderArgs {
     #[arg(long, value_enum)]
     pub adaptive_mode: Option<AdaptiveMode>,
     /// Adaptive threshold: the image's relative RMS error (variance) or corner contrast (corners).
-    #[arg(long, default_value_t = 0.01)]
+    #[arg(value_parser = super::args::finite, long, default_value_t = 0.01)]
     pub target_error: f32,
     /// Fewest samples an adaptive pixel takes.
     #[arg(long, default_value_t = 16)]

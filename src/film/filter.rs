@@ -43,6 +43,10 @@ impl std::fmt::Display for FilterKind {
 
 /// Bins of the tabulated 1D distribution of |f1| that samples are drawn from.
 const BINS: usize = 512;
+/// The widest filter accepted, in pixels: already a blur ten times the widest default (Mitchell's
+/// 2), and far below where the offsets of the camera rays lose their precision (a radius of 1e30
+/// gave a black image).
+pub const MAX_RADIUS: f32 = 16.0;
 
 #[derive(Clone, Debug)]
 pub struct Filter {
