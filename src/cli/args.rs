@@ -44,10 +44,10 @@ pub struct Args {
     #[arg(long)]
     pub seed: Option<u64>,
     /// Vertical field of view in degrees.
-    #[arg(value_parser = finite, long)]
+    #[arg(long, value_parser = finite)]
     pub fov: Option<f32>,
     /// Exposure in stops, applied to PNG output (the same on every frame of a sequence).
-    #[arg(value_parser = finite, long, default_value_t = 0.0, allow_hyphen_values = true)]
+    #[arg(long, value_parser = finite, default_value_t = 0.0, allow_hyphen_values = true)]
     pub exposure: f32,
     /// View transform of PNG output and previews, after the exposure (EXR stays linear).
     #[arg(long, value_enum, default_value_t = ViewTransform::KhronosPbrNeutral)]
@@ -180,14 +180,14 @@ impl DenoiseArgs {
 #[derive(clap::Args, Debug, Default)]
 pub struct LensArgs {
     /// Lens aperture radius in scene units (a thin lens; 0 or absent = pinhole).
-    #[arg(value_parser = finite, long, conflicts_with = "fstop")]
+    #[arg(long, value_parser = finite, conflicts_with = "fstop")]
     pub aperture: Option<f32>,
     /// Lens f-number; the focal length comes from the vertical field of view on a 24 mm (full-frame)
     /// sensor with scene units in metres: f = 12 mm / tan(fov / 2), aperture radius f / (2 N).
-    #[arg(value_parser = finite, long)]
+    #[arg(long, value_parser = finite)]
     pub fstop: Option<f32>,
     /// Distance of the plane in focus, along the view axis (default: the model's centre).
-    #[arg(value_parser = finite, long, conflicts_with = "focus_on")]
+    #[arg(long, value_parser = finite, conflicts_with = "focus_on")]
     pub focus_distance: Option<f32>,
     /// Focus on what pixel X,Y sees (its depth along the view axis).
     #[arg(long, value_parser = parse_pixel)]
@@ -213,7 +213,7 @@ pub struct TimeArgs {
     #[arg(long, value_parser = parse_shutter, allow_hyphen_values = true)]
     pub shutter: Option<[f32; 2]>,
     /// Seconds into the file's animation at which the frame is taken.
-    #[arg(value_parser = finite, long, default_value_t = 0.0, allow_hyphen_values = true)]
+    #[arg(long, value_parser = finite, default_value_t = 0.0, allow_hyphen_values = true)]
     pub frame_time: f32,
     /// Which of the file's animations plays, by index (default: the first).
     #[arg(long, default_value_t = 0)]

@@ -6,6 +6,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Subcommand;
 
+use super::args::{filter_radius, finite};
 use crate::accel::Backend;
 use crate::bench::input::Input;
 use crate::bench::rays::{self, RayKind, RaysConfig};
@@ -122,7 +123,7 @@ pub struct ConvergenceArgs {
     pub max_depth: u32,
     #[arg(long, value_enum, default_value_t = FilterKind::Box)]
     pub filter: FilterKind,
-    #[arg(value_parser = super::args::filter_radius, long)]
+    #[arg(long, value_parser = filter_radius)]
     pub filter_radius: Option<f32>,
     /// Samplers of the uniform ladders, comma separated.
     #[arg(long, value_enum, value_delimiter = ',', default_values_t = [SamplerKind::Random, SamplerKind::Stratified, SamplerKind::Sobol])]
@@ -182,7 +183,7 @@ pub struct RaysArgs {
     #[arg(long, value_parser = super::args::parse_shutter, allow_hyphen_values = true)]
     pub shutter: Option<[f32; 2]>,
     /// Seconds into the animation (with --shutter).
-    #[arg(value_parser = super::args::finite, long, default_value_t = 0.0, allow_hyphen_values = true)]
+    #[arg(long, value_parser = finite, default_value_t = 0.0, allow_hyphen_values = true)]
     pub frame_time: f32,
 }
 

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 
+use super::args::finite;
 use crate::film::{self, shard, Format};
 
 #[derive(clap::Args, Debug)]
@@ -16,7 +17,7 @@ pub struct MergeArgs {
     #[arg(short, long)]
     pub output: PathBuf,
     /// Exposure in stops for a PNG output.
-    #[arg(value_parser = super::args::finite, long, default_value_t = 0.0, allow_hyphen_values = true)]
+    #[arg(long, value_parser = finite, default_value_t = 0.0, allow_hyphen_values = true)]
     pub exposure: f32,
     /// View transform for a PNG output.
     #[arg(long, value_enum, default_value_t = film::ViewTransform::KhronosPbrNeutral)]

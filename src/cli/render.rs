@@ -6,7 +6,9 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Context, Result};
 use glam::Vec3;
 
-use super::args::{parse_duration, parse_vec3, Args, DenoiseArgs, LensArgs, TimeArgs};
+use super::args::{
+    filter_radius, finite, parse_duration, parse_vec3, Args, DenoiseArgs, LensArgs, TimeArgs,
+};
 use super::progress_bar;
 use crate::film::aov::{Aov, Outputs};
 use crate::film::filter::FilterKind;
@@ -45,11 +47,12 @@ pub struct RenderArgs {
     #[arg(long, value_name = "FILE.exr|.hdr")]
     pub env: Option<PathBuf>,
     /// Multiplier on the --env map's radiance.
-    #[arg(value_parser = super::args::finite, long, default_value_t = 1.0, requires = "env")]
+    #[arg(long, value_parser = finite, default_value_t = 1.0, requires = "env")]
     pub env_strength: f32,
     /// Turn the --env map about +Y by this many degrees (counter-clockwise seen from above).
-    #[arg(value_parser = super::args::finite, 
+    #[arg(
         long,
+        value_parser = finite,
         default_value_t = 0.0,
         allow_hyphen_values = true,
         requires = "env"
@@ -75,7 +78,7 @@ pub struct RenderArgs {
     #[arg(long, value_enum)]
     pub filter: Option<FilterKind>,
     /// Filter radius in pixels (default: box 0.5, tent 1, gaussian 1.5, mitchell 2).
-    #[arg(value_parser = super::args::filter_radius, long)]
+    #[arg(long, value_parser = filter_radius)]
     pub filter_radius: Option<f32>,
     /// Adaptive sampling: rounds until the image's estimated relative RMS error is under
     /// --target-error, samples going where they cut the error most per ray; converged pixels stop.
@@ -86,7 +89,7 @@ pub struct RenderArgs {
     #[arg(long, value_enum)]
     pub adaptive_mode: Option<AdaptiveMode>,
     /// Adaptive threshold: the image's relative RMS error (variance) or corner contrast (corners).
-    #[arg(value_parser = super::args::finite, long, default_value_t = 0.01)]
+    #[arg(long, value_parser = finite, default_value_t = 0.01)]
     pub target_error: f32,
     /// Fewest samples an adaptive pixel takes.
     #[arg(long, default_value_t = 16)]

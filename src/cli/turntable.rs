@@ -7,7 +7,7 @@ use std::time::Instant;
 use anyhow::{bail, Result};
 use clap::ValueEnum;
 
-use super::args::{Args, DenoiseArgs};
+use super::args::{finite, Args, DenoiseArgs};
 use super::{load, progress_bar};
 use crate::film::Format;
 use crate::render::job::{self, Basics, CameraChoice, JobOptions, Overrides, Setup, View};
@@ -45,13 +45,13 @@ pub struct TurntableArgs {
     #[arg(long, value_enum)]
     pub format: Option<FrameFormat>,
     /// Camera height above the model's centre, in degrees.
-    #[arg(value_parser = super::args::finite, long, default_value_t = DEFAULT_ELEVATION_DEG, allow_hyphen_values = true)]
+    #[arg(long, value_parser = finite, default_value_t = DEFAULT_ELEVATION_DEG, allow_hyphen_values = true)]
     pub elevation: f32,
     /// Azimuth of frame 0 in degrees (0: in front, on +Z).
-    #[arg(value_parser = super::args::finite, long, default_value_t = 0.0, allow_hyphen_values = true)]
+    #[arg(long, value_parser = finite, default_value_t = 0.0, allow_hyphen_values = true)]
     pub azimuth: f32,
     /// Camera distance from the model's centre (default: the bounding sphere fills the view).
-    #[arg(value_parser = super::args::finite, long)]
+    #[arg(long, value_parser = finite)]
     pub distance: Option<f32>,
     /// Turn the model in front of a fixed camera instead of orbiting the camera.
     #[arg(long)]
@@ -60,7 +60,7 @@ pub struct TurntableArgs {
     #[arg(long, value_enum, default_value_t = Lights::World)]
     pub lights: Lights,
     /// Motion blur: degrees of the frame interval the shutter is open (e.g. 180).
-    #[arg(value_parser = super::args::finite, long)]
+    #[arg(long, value_parser = finite)]
     pub shutter_angle: Option<f32>,
     /// Render only frames f with f mod N == I (I/N), for one machine of N.
     #[arg(long)]
@@ -75,7 +75,7 @@ pub struct TurntableArgs {
     #[arg(long)]
     pub preview: Option<PathBuf>,
     /// Frame rate of the GIF preview.
-    #[arg(value_parser = super::args::finite, long, default_value_t = 24.0)]
+    #[arg(long, value_parser = finite, default_value_t = 24.0)]
     pub preview_fps: f32,
     /// Largest GIF width in pixels (frames are downscaled to it).
     #[arg(long, default_value_t = 480)]
