@@ -175,6 +175,17 @@ fn bad_invocations_fail_with_a_message_and_leave_no_file() {
             vec!["turntable", demo, "-o", out, "--elevation", "NaN"],
             "'NaN': expected a finite number",
         ),
+        // A bench of no rays reported 0 Mrays/s; one of a billion would have run out of memory.
+        (
+            vec!["bench", "rays", demo, "--width", "0"],
+            "expected a size in pixels from 1 to 32768",
+        ),
+        (
+            vec![
+                "bench", "rays", demo, "--width", "30000", "--height", "30000",
+            ],
+            "more than a bench traces",
+        ),
     ];
     for (args, needle) in cases {
         let o = glint(&args);

@@ -15,6 +15,7 @@ use crate::accel::{self, compare, Accel, Backend};
 use crate::geometry::mix64;
 use crate::geometry::Frame;
 use crate::geometry::Ray;
+use crate::render::job::MAX_PIXELS;
 use crate::render::light::{LightContext, LightSampler, LightSet};
 use crate::render::offset::offset_ray_origin;
 use crate::render::RayCamera;
@@ -216,10 +217,19 @@ fn in_packets<T: Copy + Default>(
         .sum()
 }
 
+/// Refuses ray sets larger than the largest render's camera rays, before any is made.
+pub fn check_size(width: usize, height: usize) -> Result<()> {
+    match width.checked_mul(height) {
+        Some(n) if n <= MAX_PIXELS => Ok(()),
+        _ => Err(BenchError::TooManyRays(width, height)),
+    }
+}
+
 pub fn run(input: &Input, config: &RaysConfig) -> Result<Report> {
     if config.threads.contains(&0) {
         return Err(BenchError::ZeroThreads);
     }
+    check_size(config.width, config.height)?;
     let mut scene = input.load()?;
     if let Some(shutter) = config.shutter {
         crate::scene::animation::pose(&mut scene, config.frame_time, shutter);
