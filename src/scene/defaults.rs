@@ -102,9 +102,9 @@ pub fn has_own_lights(scene: &Scene) -> bool {
     !scene.lights.is_empty() || emission_share(scene) >= OWN_EMISSION_SHARE
 }
 
-/// The flux of the scene's untextured emissive triangles (luminance times area, both sides'
-/// factor of pi left out) over that of the default environment into the bounding sphere
-/// (`ENVIRONMENT_RADIANCE` times the sphere's area).
+/// The flux of the scene's untextured emissive triangles (luminance times area) over that of the
+/// default environment into the bounding sphere (`ENVIRONMENT_RADIANCE` times the sphere's area);
+/// the factor pi of both fluxes cancels.
 pub fn emission_share(scene: &Scene) -> f64 {
     let mut flux = 0.0f64;
     for (i, inst) in scene.instances.iter().enumerate() {
