@@ -91,50 +91,34 @@ fn bad_invocations_fail_with_a_message_and_leave_no_file() {
     let missing = dir.path().join("nope.glb");
     let demo = demo();
     let demo = demo.as_str();
+    // `render DEMO -o OUT` and the given flags.
+    let render = |flags: &[&'static str]| {
+        let mut args = vec!["render", demo, "-o", out];
+        args.extend_from_slice(flags);
+        args
+    };
     let cases: Vec<(Vec<&str>, &str)> = vec![
         (
             vec!["render", missing.to_str().unwrap(), "-o", out],
             "nope.glb",
         ),
         (vec!["render", demo, "-o", "x.bmp"], "x.bmp"),
-        (
-            vec!["render", demo, "-o", out, "--width", "0"],
-            "out of range",
-        ),
-        (
-            vec!["render", demo, "-o", out, "--camera", "7"],
-            "no camera",
-        ),
-        (vec!["render", demo, "-o", out, "--backend", "gpu"], "gpu"),
-        (vec!["render", demo, "-o", out, "--eye", "1,2"], "x,y,z"),
+        (render(&["--width", "0"]), "out of range"),
+        (render(&["--camera", "7"]), "no camera"),
+        (render(&["--backend", "gpu"]), "gpu"),
+        (render(&["--eye", "1,2"]), "x,y,z"),
         (vec!["info", missing.to_str().unwrap()], "nope.glb"),
         (
-            vec!["render", demo, "-o", out, "--focus-distance", "2"],
+            render(&["--focus-distance", "2"]),
             "need --aperture or --fstop",
         ),
+        (render(&["--fstop", "0"]), "--fstop must be positive"),
         (
-            vec!["render", demo, "-o", out, "--fstop", "0"],
-            "--fstop must be positive",
-        ),
-        (
-            vec![
-                "render",
-                demo,
-                "-o",
-                out,
-                "--aperture",
-                "0.1",
-                "--focus-on",
-                "900,2",
-            ],
+            render(&["--aperture", "0.1", "--focus-on", "900,2"]),
             "outside",
         ),
         (
-            vec![
-                "render",
-                demo,
-                "-o",
-                out,
+            render(&[
                 "--width",
                 "8",
                 "--height",
@@ -147,44 +131,39 @@ fn bad_invocations_fail_with_a_message_and_leave_no_file() {
                 "0,0,100",
                 "--look-at",
                 "0,0,200",
-            ],
+            ]),
             "sees no surface",
         ),
-        (
-            vec!["render", demo, "-o", out, "--shutter", "0.1,0"],
-            "OPEN <= CLOSE",
-        ),
+        (render(&["--shutter", "0.1,0"]), "OPEN <= CLOSE"),
         // NaN and infinities in numeric flags used to run on into black images.
         (
-            vec!["render", demo, "-o", out, "--exposure", "nan"],
+            render(&["--exposure", "nan"]),
             "'nan': expected a finite number",
         ),
         (
-            vec!["render", demo, "-o", out, "--frame-time", "inf"],
+            render(&["--frame-time", "inf"]),
             "'inf': expected a finite number",
         ),
         (
-            vec!["render", demo, "-o", out, "--filter-radius", "1e30"],
+            render(&["--filter-radius", "1e30"]),
             "above 0 and at most 16",
         ),
-        (
-            vec!["render", demo, "-o", out, "--filter-radius", "0"],
-            "above 0 and at most 16",
-        ),
+        (render(&["--filter-radius", "0"]), "above 0 and at most 16"),
         (
             vec!["turntable", demo, "-o", out, "--elevation", "NaN"],
             "'NaN': expected a finite number",
         ),
         // A bench of no rays reported 0 Mrays/s; one of a billion would have run out of memory.
+        // The benches refuse the sizes a render refuses.
         (
             vec!["bench", "rays", demo, "--width", "0"],
-            "expected a size in pixels from 1 to 32768",
+            "image size 0x768 is out of range",
         ),
         (
             vec![
                 "bench", "rays", demo, "--width", "30000", "--height", "30000",
             ],
-            "more than a bench traces",
+            "image size 30000x30000 is out of range",
         ),
     ];
     for (args, needle) in cases {

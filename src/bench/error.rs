@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use crate::accel::AccelError;
 use crate::film::FilmError;
-use crate::render::job::{JobError, MAX_PIXELS};
+use crate::render::job::JobError;
 use crate::scene::LoadError;
 
 #[derive(Debug, thiserror::Error)]
@@ -32,8 +32,6 @@ pub enum BenchError {
     NothingToTrace(String),
     #[error("thread counts must be at least 1")]
     ZeroThreads,
-    #[error("{0}x{1} rays is more than a bench traces (at most {MAX_PIXELS}: one per pixel of a render)")]
-    TooManyRays(usize, usize),
     #[error("building a thread pool")]
     ThreadPool(#[source] rayon::ThreadPoolBuildError),
     #[error(transparent)]

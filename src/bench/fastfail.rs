@@ -61,7 +61,7 @@ pub struct Row {
 /// Counts the tests for every ray kind and pretest combination on at most `max_rays` rays per kind
 /// (every `k`-th ray of the set, so the sample spans the image).
 pub fn run(input: &Input, width: usize, height: usize, max_rays: usize) -> Result<Vec<Row>> {
-    super::rays::check_size(width, height)?;
+    crate::render::job::check_size(width, height)?;
     let scene = Arc::new(input.load()?);
     if scene.triangle_count() == 0 {
         return Err(BenchError::NoTriangles(input.to_string()));

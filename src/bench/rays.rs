@@ -15,7 +15,6 @@ use crate::accel::{self, compare, Accel, Backend};
 use crate::geometry::mix64;
 use crate::geometry::Frame;
 use crate::geometry::Ray;
-use crate::render::job::MAX_PIXELS;
 use crate::render::light::{LightContext, LightSampler, LightSet};
 use crate::render::offset::offset_ray_origin;
 use crate::render::RayCamera;
@@ -217,19 +216,11 @@ fn in_packets<T: Copy + Default>(
         .sum()
 }
 
-/// Refuses ray sets larger than the largest render's camera rays, before any is made.
-pub fn check_size(width: usize, height: usize) -> Result<()> {
-    match width.checked_mul(height) {
-        Some(n) if n <= MAX_PIXELS => Ok(()),
-        _ => Err(BenchError::TooManyRays(width, height)),
-    }
-}
-
 pub fn run(input: &Input, config: &RaysConfig) -> Result<Report> {
     if config.threads.contains(&0) {
         return Err(BenchError::ZeroThreads);
     }
-    check_size(config.width, config.height)?;
+    crate::render::job::check_size(config.width, config.height)?;
     let mut scene = input.load()?;
     if let Some(shutter) = config.shutter {
         crate::scene::animation::pose(&mut scene, config.frame_time, shutter);
@@ -242,15 +233,10 @@ pub fn run(input: &Input, config: &RaysConfig) -> Result<Report> {
     let reference = accel::build(scene.clone(), Backend::Bvh)?;
     let sets = generate_rays(&scene, reference.as_ref(), config.width, config.height);
     drop(reference);
-    let embree = if config.backends.contains(&Backend::Embree) {
-        Some(accel::build(scene.clone(), Backend::Embree)?)
-    } else {
-        None
-    };
 
-    // Every backend is built, then timed in turn on each repetition (not all of one backend's
-    // runs, then the next's): this machine's speed drifts over seconds, and a drift between two
-
+    // Every backend is built, then timed in turn within each repetition (not all of one backend's
+    // runs, then the next's): these machines' speed drifts over seconds, and a drift between two
+    // backends' blocks of runs was read as a difference between the backends.
     let mut builds: Vec<(f64, Option<Box<dyn Accel>>)> = config
         .backends
         .iter()
@@ -268,6 +254,12 @@ pub fn run(input: &Input, config: &RaysConfig) -> Result<Report> {
         .into_iter()
         .map(|(s, a)| (s, a.expect("repeat >= 1")))
         .collect();
+    // Agreement is with the Embree measured here, when it is.
+    let embree = config
+        .backends
+        .iter()
+        .position(|&b| b == Backend::Embree)
+        .map(|i| accels[i].1.as_ref());
     let mut kinds: Vec<Vec<KindResult>> = config.backends.iter().map(|_| Vec::new()).collect();
     for &kind in &config.kinds {
         let rays = sets.get(kind);
@@ -295,8 +287,7 @@ pub fn run(input: &Input, config: &RaysConfig) -> Result<Report> {
                 rays: rays.len(),
                 mrays,
                 agreement: embree
-                    .as_ref()
-                    .map(|e| agreement(&scene, accel.as_ref(), e.as_ref(), rays, kind.any_hit())),
+                    .map(|e| agreement(&scene, accel.as_ref(), e, rays, kind.any_hit())),
             });
         }
     }

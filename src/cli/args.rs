@@ -9,7 +9,7 @@ use crate::film::aov::FeatureImages;
 use crate::film::denoise::{DenoiseError, DenoiseOptions, DenoiseQuality, Denoiser, GuideMode};
 use crate::film::filter::MAX_RADIUS;
 use crate::film::{Display, Image, ViewTransform};
-use crate::render::job::{DefaultLights, LensOptions, Overrides, Time, MAX_EDGE};
+use crate::render::job::{DefaultLights, LensOptions, Overrides, Time};
 use crate::scene::{GgxScattering, Layering, SceneChoice, UpAxis};
 
 /// What `render` and `turntable` share: image size, sampling, backend, seed, lights, exposure,
@@ -237,17 +237,6 @@ pub fn finite(s: &str) -> Result<f32, String> {
         Ok(v) if v.is_finite() => Ok(v),
         Ok(_) => Err(format!("'{s}': expected a finite number")),
         Err(e) => Err(format!("'{s}': {e}")),
-    }
-}
-
-/// Parses an image edge in pixels, 1 to `MAX_EDGE` (the benches' sizes; `render` checks its own
-/// with the scene file's).
-pub fn edge(s: &str) -> Result<usize, String> {
-    match s.trim().parse::<usize>() {
-        Ok(n) if (1..=MAX_EDGE).contains(&n) => Ok(n),
-        _ => Err(format!(
-            "'{s}': expected a size in pixels from 1 to {MAX_EDGE}"
-        )),
     }
 }
 

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Subcommand;
 
-use super::args::{edge, filter_radius, finite};
+use super::args::{filter_radius, finite};
 use crate::accel::Backend;
 use crate::bench::input::Input;
 use crate::bench::rays::{self, RayKind, RaysConfig};
@@ -20,10 +20,10 @@ use crate::sample::SamplerKind;
 #[derive(clap::Args, Debug)]
 pub struct Size<const W: usize, const H: usize> {
     /// Image width in pixels [default: the command's own]
-    #[arg(long, value_parser = edge)]
+    #[arg(long)]
     width: Option<usize>,
     /// Image height in pixels [default: the command's own]
-    #[arg(long, value_parser = edge)]
+    #[arg(long)]
     height: Option<usize>,
 }
 

@@ -10,7 +10,9 @@ use std::time::Instant;
 
 use indicatif::ProgressBar;
 
-pub use settings::{file_overrides, resolve, Basics, Overrides, MAX_EDGE, MAX_PIXELS, MAX_SPP};
+pub use settings::{
+    check_size, file_overrides, resolve, Basics, Overrides, MAX_EDGE, MAX_PIXELS, MAX_SPP,
+};
 pub use view::{CameraChoice, CameraRef, Environment, LensOptions, View};
 
 use super::{render_full, RenderOutput, RenderSettings};

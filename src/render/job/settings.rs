@@ -82,16 +82,22 @@ impl Default for Basics {
     }
 }
 
+/// Refuses an image size that cannot be rendered (or would not fit in memory); the benches trace
+/// one ray per pixel of such an image and refuse the same sizes.
+pub fn check_size(w: usize, h: usize) -> Result<(), JobError> {
+    if w == 0 || h == 0 || w > MAX_EDGE || h > MAX_EDGE {
+        return Err(JobError::EdgeOutOfRange(w, h));
+    }
+    if w * h > MAX_PIXELS {
+        return Err(JobError::PixelsOutOfRange(w, h));
+    }
+    Ok(())
+}
+
 impl Basics {
     /// Refuses sizes and sample counts that cannot be rendered (or would not fit in memory).
     pub fn validate(&self) -> Result<(), JobError> {
-        let (w, h) = (self.width, self.height);
-        if w == 0 || h == 0 || w > MAX_EDGE || h > MAX_EDGE {
-            return Err(JobError::EdgeOutOfRange(w, h));
-        }
-        if w * h > MAX_PIXELS {
-            return Err(JobError::PixelsOutOfRange(w, h));
-        }
+        check_size(self.width, self.height)?;
         if self.spp == 0 || self.spp > MAX_SPP {
             return Err(JobError::SppOutOfRange(self.spp));
         }
