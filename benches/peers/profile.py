@@ -15,7 +15,8 @@ fall:
   and EXR readers and writers, decompression), which the render's time excludes;
 - kernel: page faults and scheduling, mostly during load.
 The ratio reported is own / queries; `--runs N` repeats the render and reports each run's ratio (runs
-of one binary move it by about 5%).
+of one binary move it by about 5%). `--top N` then lists the N functions of the own group with the
+most samples over all runs (inlined code counts as its caller's), each as a percentage of all samples.
 """
 import argparse
 import re
@@ -31,23 +32,29 @@ LOAD_WRITE = re.compile(r"tobj::|zune|png::|exr::|gltf|image::|miniz|inflate|fla
                         r"crc32|toml|serde|basisu|draco|meshopt|webp")
 
 
-def groups(report):
-    """Percentages of samples per group from `perf report -n --sort dso,sym` text (from the sample
-    counts: the printed percentages are rounded, and hundreds of rare symbols add up)."""
-    g = {"own": 0, "queries": 0, "load and write": 0, "kernel": 0}
+def samples(report):
+    """(group, symbol, sample count) for each line of `perf report -n --sort dso,sym` text (counts,
+    not the printed percentages: those are rounded, and hundreds of rare symbols add up)."""
     for line in report.splitlines():
         m = re.match(r"\s*[0-9.]+%\s+([0-9]+)\s+(\S+)\s+\[(.)\]\s+(.*)", line)
         if not m:
             continue
-        n, dso, kind, sym = int(m.group(1)), m.group(2), m.group(3), m.group(4)
+        n, dso, kind, sym = int(m.group(1)), m.group(2), m.group(3), m.group(4).strip()
         if kind == "k" or dso.startswith("[kernel"):
-            g["kernel"] += n
+            yield "kernel", sym, n
         elif dso.startswith(("libembree4", "libtbb")):
-            g["queries"] += n
+            yield "queries", sym, n
         elif LOAD_WRITE.search(sym):
-            g["load and write"] += n
+            yield "load and write", sym, n
         else:
-            g["own"] += n
+            yield "own", f"{sym} ({dso})" if not dso.startswith("glint") else sym, n
+
+
+def groups(report):
+    """Percentages of samples per group from `perf report` text (see `samples`)."""
+    g = {"own": 0, "queries": 0, "load and write": 0, "kernel": 0}
+    for group, _, n in samples(report):
+        g[group] += n
     total = sum(g.values()) or 1
     return {k: 100.0 * v / total for k, v in g.items()}
 
@@ -63,6 +70,7 @@ def main():
     ap.add_argument("--height", type=int, default=240)
     ap.add_argument("--depth", type=int, default=5)
     ap.add_argument("--runs", type=int, default=1)
+    ap.add_argument("--top", type=int, default=0, help="list the N own functions with the most samples")
     a = ap.parse_args()
     out = Path(a.out).resolve()
     out.mkdir(parents=True, exist_ok=True)
@@ -73,6 +81,7 @@ def main():
     print(f"{a.scene}, {a.width}x{a.height}, {a.spp} spp, {a.threads} thread(s), {Path(a.glint).name}")
     print("| run | own % | queries % | load and write % | kernel % | own / queries |")
     print("|---|---|---|---|---|---|")
+    own, total_samples = {}, 0
     for run in range(1, a.runs + 1):
         data = out / f"glint_{run}.perf"
         r = subprocess.run(["perf", "record", "-q", "-e", "cpu-clock", "-F", "2000", "-o", str(data), "--", *cmd],
@@ -84,9 +93,17 @@ def main():
         if rep.returncode != 0:
             sys.exit(f"perf report failed: {rep.stderr[-500:]}")
         g = groups(rep.stdout)
+        for group, sym, n in samples(rep.stdout):
+            total_samples += n
+            if group == "own":
+                own[sym] = own.get(sym, 0) + n
         ratio = g["own"] / g["queries"] if g["queries"] > 0 else float("inf")
         print(f"| {run} | {g['own']:.1f} | {g['queries']:.1f} | {g['load and write']:.1f} | {g['kernel']:.1f} | "
               f"{ratio:.2f} |", flush=True)
+    if a.top > 0:
+        print(f"\n| own function (all {a.runs} runs) | % of samples |\n|---|---|")
+        for sym, n in sorted(own.items(), key=lambda kv: -kv[1])[:a.top]:
+            print(f"| `{sym}` | {100.0 * n / max(total_samples, 1):.1f} |")
 
 
 if __name__ == "__main__":
