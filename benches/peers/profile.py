@@ -4,7 +4,7 @@ from a `perf record` of the render that speed.py times. A bench, not a test; it 
 profile target (glint's own code at most the time of its ray queries).
 
     profile.py OUTDIR [--scene bunny-cornell] [--glint target/release/glint] [--spp 32] [--threads 1]
-               [--width 320] [--height 240] [--depth 5] [--runs 1]
+               [--width 320] [--height 240] [--depth 5] [--runs 1] [--top 0]
 
 Needs `perf` (linux-perf; on virtual machines only the software event cpu-clock may work, which is the
 one used) and the Python of speed.py (numpy, OpenEXR). Samples are put in four groups by where they
