@@ -1,6 +1,7 @@
 //! A uniform voxel grid over world-space triangles (`--backend grid`): instances flattened as the BVH
 //! flattens them, cells sized from the triangle count (about `lambda` triangles' worth of cells per
-//! triangle, shaped by the bounds' aspect), stored compactly (per-cell offsets into one flat array of
+//! triangle, shaped by the bounds' aspect; coarser where large triangles would span too many of
+//! them, `SPAN_BUDGET`), stored compactly (per-cell offsets into one flat array of
 //! four-triangle packets, as the BVH's leaves) and built in parallel. Rays walk the cells with the
 //! 3D-DDA of Amanatides and Woo, test each cell's packets with the four-wide watertight test the BVH
 //! uses (lanes already tested by the ray are masked out by a small per-ray mailbox, and a packet with
@@ -37,6 +38,13 @@ pub const MAX_CELLS: usize = 1 << 24;
 const MAILBOX: usize = 64;
 /// Triangles whose box spans more cells than this are checked against each cell's box by their plane.
 const PLANE_TEST_MIN_CELLS: usize = 2;
+/// The most cells the triangles' boxes may span in all (each is visited once to insert, and its
+/// cell entries are at most that many), or 8 a triangle where that is more: past it the resolution
+/// halves until they fit. A triangle across the whole grid spans every cell, up to `MAX_CELLS`: a
+/// thousand of them in a large scan's grid would mean 1.7e10 cell tests, and some 44,000 more
+/// entries than the u32 offsets hold. Models span about two cells a triangle (ToyCar 0.21M for 109k
+/// triangles, icosphere:8 2.0M for 1.3M, MetalRoughSpheresNoTextures 1.8M for 1.0M), far inside it.
+const SPAN_BUDGET: u64 = 1 << 26;
 
 /// The uniform grid over a set of triangles.
 pub struct Grid {
@@ -102,27 +110,55 @@ impl Grid {
         let pad = 16.0 * f32::EPSILON * magnitude;
         let min = bounds.min - Vec3::splat(pad);
         let max = bounds.max + Vec3::splat(pad);
-        let extent = max - min;
-        let res = resolution(extent, tris.len(), lambda);
-        let resf = Vec3::new(res[0] as f32, res[1] as f32, res[2] as f32);
-        let cell_size = extent / resf;
-        let inv_cell_size = Vec3::select(extent.cmpgt(Vec3::ZERO), resf / extent, Vec3::ZERO);
+        let budget = SPAN_BUDGET.max(8 * tris.len() as u64).min(u32::MAX as u64);
         let mut grid = Self {
             tris,
             ids,
             min,
             max,
-            res,
-            cell_size,
-            inv_cell_size,
+            res: [1; 3],
+            cell_size: Vec3::ZERO,
+            inv_cell_size: Vec3::ZERO,
             pad,
             offsets: Vec::new(),
             packets: Vec::new(),
             lanes: Vec::new(),
             entries: 0,
         };
+        grid.set_resolution(resolution(max - min, grid.tris.len(), lambda));
+        while grid.res != [1; 3] && grid.spanned_cells() > budget {
+            grid.set_resolution(grid.res.map(|r| (r / 2).max(1)));
+        }
         grid.fill();
         grid
+    }
+
+    fn set_resolution(&mut self, res: [u32; 3]) {
+        let extent = self.max - self.min;
+        let resf = Vec3::new(res[0] as f32, res[1] as f32, res[2] as f32);
+        self.res = res;
+        self.cell_size = extent / resf;
+        self.inv_cell_size = Vec3::select(extent.cmpgt(Vec3::ZERO), resf / extent, Vec3::ZERO);
+    }
+
+    /// The cells the triangles' padded boxes span, summed: a bound on the insertion's work and on
+    /// the entries it makes.
+    fn spanned_cells(&self) -> u64 {
+        self.tris
+            .par_iter()
+            .map(|t| {
+                let (lo, hi) = self.box_cells(t);
+                (0..3).map(|a| (hi[a] - lo[a] + 1) as u64).product::<u64>()
+            })
+            .sum()
+    }
+
+    /// The first and last cell (per axis) that the padded box of `t` overlaps.
+    #[inline]
+    fn box_cells(&self, t: &[Vec3; 3]) -> ([usize; 3], [usize; 3]) {
+        let b = Aabb::from_points(*t);
+        let pad = Vec3::splat(self.pad);
+        (self.cell_of(b.min - pad), self.cell_of(b.max + pad))
     }
 
     /// Count pass, prefix sum, fill pass, then each cell's list sorted (so the layout, and the order
@@ -140,7 +176,8 @@ impl Grid {
         offsets.push(0u32);
         for c in &counts {
             total += c.load(Ordering::Relaxed) as u64;
-            offsets.push(u32::try_from(total).expect("grid: more than 2^32 cell entries"));
+            // At most the spanned cells, which `new` keeps within a budget far below 2^32.
+            offsets.push(u32::try_from(total).expect("cell entries within the span budget"));
         }
         drop(counts);
         let cursor: Vec<AtomicU32> = offsets[..cells]
@@ -209,10 +246,8 @@ impl Grid {
     /// several cells, whose padded box the triangle's plane passes through.
     #[inline]
     fn for_each_cell(&self, t: &[Vec3; 3], mut f: impl FnMut(usize)) {
-        let b = Aabb::from_points(*t);
         let pad = Vec3::splat(self.pad);
-        let lo = self.cell_of(b.min - pad);
-        let hi = self.cell_of(b.max + pad);
+        let (lo, hi) = self.box_cells(t);
         let span = (hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
         let [nx, ny, _] = self.res.map(|r| r as usize);
         // The plane test, conservative: a margin far above the rounding of the normal and distance.
@@ -459,10 +494,58 @@ impl Triangles for Grid {
 mod tests {
     // Queries are tested with every backend's in `accel::conformance`.
     use super::*;
-    use crate::accel::testing::scene;
+    use crate::accel::testing::{brute, scene};
     use crate::accel::Accel;
-    use crate::scene::{generate, Instance};
+    use crate::scene::{generate, Instance, Mesh};
     use glam::Mat4;
+
+    /// Triangles across the whole of a fine grid: the resolution halves until the cells their
+    /// boxes span fit the budget, and the coarser grid still finds what brute force finds.
+    #[test]
+    fn huge_triangles_across_a_fine_grid_coarsen_it() {
+        let mut r = crate::accel::testing::rng(7);
+        let mut mesh = Mesh::default();
+        let mut add = |t: [Vec3; 3]| {
+            let k = mesh.positions.len() as u32;
+            mesh.positions.extend(t);
+            mesh.normals.extend([Vec3::Z; 3]);
+            mesh.indices.push([k, k + 1, k + 2]);
+        };
+        // Enough small triangles in the unit cube to ask for about 46^3 cells...
+        for _ in 0..200_000 {
+            let c = Vec3::new(r(), r(), r());
+            add([
+                c,
+                c + Vec3::new(1e-3, 0.0, 0.0),
+                c + Vec3::new(0.0, 1e-3, 1e-3),
+            ]);
+        }
+        // ...and a fan of a thousand about its diagonal, each box spanning every cell (97M in all).
+        for i in 0..1000 {
+            let a = i as f32 / 1000.0;
+            add([Vec3::ZERO, Vec3::ONE, Vec3::new(1.0, a, 1.0 - a)]);
+        }
+        let s = scene(vec![mesh], vec![Instance::new(0, Mat4::IDENTITY)]);
+        let g = GridAccel::build(s.clone());
+        let grid = g.statics();
+        let asked = resolution(Vec3::ONE, 201_000, DEFAULT_LAMBDA);
+        assert!(asked.iter().all(|&a| a >= 40), "{asked:?}");
+        assert!(
+            grid.resolution()
+                .iter()
+                .zip(&asked)
+                .all(|(&got, &a)| got <= a / 2),
+            "{:?} against {asked:?}",
+            grid.resolution()
+        );
+        assert!(grid.entry_count() as u64 <= SPAN_BUDGET);
+        for i in 0..200 {
+            let o = Vec3::new(r(), r(), 2.0);
+            let d = (Vec3::new(r(), r(), 0.0) - o).normalize();
+            let ray = Ray::new(o, d);
+            assert_eq!(g.intersect(&ray), brute(&s, &ray), "ray {i}");
+        }
+    }
 
     #[test]
     fn empty_and_flat_scenes_get_degenerate_grids() {
