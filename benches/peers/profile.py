@@ -50,10 +50,10 @@ def samples(report):
             yield "own", f"{sym} ({dso})" if not dso.startswith("glint") else sym, n
 
 
-def groups(report):
-    """Percentages of samples per group from `perf report` text (see `samples`)."""
+def groups(lines):
+    """Percentages of samples per group from the lines `samples` read."""
     g = {"own": 0, "queries": 0, "load and write": 0, "kernel": 0}
-    for group, _, n in samples(report):
+    for group, _, n in lines:
         g[group] += n
     total = sum(g.values()) or 1
     return {k: 100.0 * v / total for k, v in g.items()}
@@ -92,8 +92,9 @@ def main():
                               "--sort", "dso,sym", "--percent-limit", "0"], capture_output=True, text=True)
         if rep.returncode != 0:
             sys.exit(f"perf report failed: {rep.stderr[-500:]}")
-        g = groups(rep.stdout)
-        for group, sym, n in samples(rep.stdout):
+        lines = list(samples(rep.stdout))
+        g = groups(lines)
+        for group, sym, n in lines:
             total_samples += n
             if group == "own":
                 own[sym] = own.get(sym, 0) + n

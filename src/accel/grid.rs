@@ -146,19 +146,18 @@ impl Grid {
     fn spanned_cells(&self) -> u64 {
         self.tris
             .par_iter()
-            .map(|t| {
-                let (lo, hi) = self.box_cells(t);
-                (0..3).map(|a| (hi[a] - lo[a] + 1) as u64).product::<u64>()
-            })
+            .map(|t| self.box_cells(t).2 as u64)
             .sum()
     }
 
-    /// The first and last cell (per axis) that the padded box of `t` overlaps.
+    /// The first and last cell (per axis) that the padded box of `t` overlaps, and how many cells
+    /// that box spans.
     #[inline]
-    fn box_cells(&self, t: &[Vec3; 3]) -> ([usize; 3], [usize; 3]) {
+    fn box_cells(&self, t: &[Vec3; 3]) -> ([usize; 3], [usize; 3], usize) {
         let b = Aabb::from_points(*t);
         let pad = Vec3::splat(self.pad);
-        (self.cell_of(b.min - pad), self.cell_of(b.max + pad))
+        let (lo, hi) = (self.cell_of(b.min - pad), self.cell_of(b.max + pad));
+        (lo, hi, (0..3).map(|a| hi[a] - lo[a] + 1).product())
     }
 
     /// Count pass, prefix sum, fill pass, then each cell's list sorted (so the layout, and the order
@@ -247,8 +246,7 @@ impl Grid {
     #[inline]
     fn for_each_cell(&self, t: &[Vec3; 3], mut f: impl FnMut(usize)) {
         let pad = Vec3::splat(self.pad);
-        let (lo, hi) = self.box_cells(t);
-        let span = (hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
+        let (lo, hi, span) = self.box_cells(t);
         let [nx, ny, _] = self.res.map(|r| r as usize);
         // The plane test, conservative: a margin far above the rounding of the normal and distance.
         let e1 = t[1] - t[0];
