@@ -66,7 +66,7 @@ pub struct RenderArgs {
     pub sampler: Option<SamplerKind>,
     /// How light samples choose among the lights: by power, or through the light BVH (by a bound
     /// on what each light sends the shading point; less noise among many lights); auto takes the
-    /// BVH from 64 lights on (emissive triangles count one each)
+    /// BVH from two lights on that are not at infinity (emissive triangles count one each)
     #[arg(long, value_enum, default_value_t = LightSampler::Auto)]
     pub light_sampler: LightSampler,
     /// Camera rays a path takes for the emission it sees directly, in pixels where emitters

@@ -114,8 +114,10 @@ impl LightBvh {
                 continue;
             }
             match bounds(i) {
+                // The tree's share against the lights at infinity is by the lights' weights (a
+                // spot's bound is not its flux).
                 Some(b) => {
-                    tree_power += b.phi as f64;
+                    tree_power += w as f64;
                     items.push((i as u32, b));
                 }
                 None => {

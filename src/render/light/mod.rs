@@ -82,11 +82,12 @@ impl Entry {
         }
     }
 
-    /// The bounds of the entry's emission, of power `phi`; `None` for lights at infinity.
+    /// The bounds of the entry's emission, of power `phi` (the entry's weight; a spot light's is
+    /// its own, see `spot::bounds`); `None` for lights at infinity.
     fn bounds(&self, phi: f32) -> Option<LightBounds> {
         match self {
             Entry::Point(l) => Some(point::bounds(l, phi)),
-            Entry::Spot(l) => Some(spot::bounds(l, phi)),
+            Entry::Spot(l) => Some(spot::bounds(l)),
             Entry::Directional(_) | Entry::Environment(_) => None,
             Entry::Triangle(t) => Some(t.bounds(phi)),
             Entry::Quad(q) => Some(q.bounds(phi)),
@@ -121,20 +122,24 @@ pub struct LightSample {
     pub is_delta: bool,
 }
 
-/// From this many lights on, `LightSampler::Auto` takes the BVH. many-emitters cut to N small
-/// triangles (32 spp x 2 seeds, two runs): the BVH's time to RMSE 0.01 was 1.06-1.08x the power
-/// sampler's at 32, 0.99-1.00x at 64, 0.93x at 128, 0.81x at 300 (its noise lower from 64 on,
-/// its choice 13-28% dearer a sample).
-pub const AUTO_BVH_LIGHTS: usize = 64;
+/// From this many lights with bounds on (lights at infinity are chosen beside the tree),
+/// `LightSampler::Auto` takes the BVH. Session 34, the BVH's time to RMSE 0.01 over the power
+/// sampler's (32 spp x 2 seeds, 2 threads, medians of two runs): EmissiveStrengthTest's five lit
+/// bays 0.39, the demo (a spot, a point light, an emissive panel) 0.56, LightsPunctualLamp 0.40,
+/// many-emitters cut to 16 / 32 / 48 small triangles 0.60 / 0.53 / 0.43; one rect light beside an
+/// environment (assets/scenes) 1.01-1.11, the same noise. (It took 64 before: session 16 measured
+/// the cut many-emitters 1.06-1.08x at 32, with the four-wide tree and before the spot's bound.)
+pub const AUTO_BVH_LIGHTS: usize = 2;
 
 /// How next-event estimation picks the light to sample.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
 pub enum LightSampler {
-    /// The BVH for scenes of at least `AUTO_BVH_LIGHTS` lights (emissive triangles count one
-    /// each, a rectangle of two one), power below. Measured (session 8, sigma at equal spp, power -> bvh): many-emitters
-    /// (1,200) 0.539 -> 0.456 at 1.17x the time per sample, 0.84x the time to a clean image;
-    /// DamagedHelmet (its emissive triangles) 0.505 -> 0.482 and EmissiveStrengthTest (60)
-    /// 0.186 -> 0.117 at the same time; bunny-cornell (2) equal; the demo (14) 0.953 -> 1.042.
+    /// The BVH for scenes of at least `AUTO_BVH_LIGHTS` lights with bounds (all but directional
+    /// lights and environments; emissive triangles count one each, a rectangle of two one), power
+    /// below. Measured (session 8, sigma at equal spp, power -> bvh): many-emitters (1,200) 0.539
+    /// -> 0.456 at 1.17x the time per sample, 0.84x the time to a clean image; DamagedHelmet (its
+    /// emissive triangles) 0.505 -> 0.482 and EmissiveStrengthTest (60) 0.186 -> 0.117 at the
+    /// same time; bunny-cornell (2) equal. See `AUTO_BVH_LIGHTS` for where it switches.
     #[default]
     Auto,
     /// In proportion to power: blind to where the shading point is, O(1).
@@ -279,8 +284,13 @@ impl LightSet {
                 }
             }
         }
+        let bounded = || {
+            (entries.iter().zip(&weights))
+                .filter(|&(e, &w)| w > 0.0 && e.bounds(w).is_some())
+                .count()
+        };
         let bvh = match sampler {
-            LightSampler::Auto => weights.len() >= AUTO_BVH_LIGHTS,
+            LightSampler::Auto => bounded() >= AUTO_BVH_LIGHTS,
             LightSampler::Power => false,
             LightSampler::Bvh => true,
         };

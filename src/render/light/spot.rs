@@ -30,15 +30,19 @@ pub(super) fn power(l: &SpotLight) -> f32 {
     2.0 * PI * (1.0 - l.cos_outer) * luminance(l.intensity)
 }
 
-/// The bounds of the light's emission, of power `phi`, for the light BVH: full strength within
-/// the inner cone, some out to the outer one.
-pub(super) fn bounds(l: &SpotLight, phi: f32) -> LightBounds {
+/// The bounds of the light's emission for the light BVH: full strength within the inner cone,
+/// some out to the outer one. Their power is a point light's of the same intensity (4 pi I, as
+/// pbrt-v4's), not the flux into the cone that `power` weighs it by: the cones already bound
+/// where it shines, and inside them a narrow spot lights a point as much as a wide one. With the
+/// flux the BVH gave a spot of outer angle 0.6 rad 11 times too few samples against a point light
+/// (the demo, 32 spp: sigma 0.96 against the power sampler's 0.65).
+pub(super) fn bounds(l: &SpotLight) -> LightBounds {
     // An inner cone wider than the outer one still lights only the outer one.
     let outer = l.cos_outer.clamp(-1.0, 1.0).acos();
     let inner = l.cos_inner.clamp(-1.0, 1.0).acos().min(outer);
     LightBounds {
         bounds: Aabb::from_points([l.position]),
-        phi,
+        phi: (4.0 * PI * luminance(l.intensity)).min(f32::MAX),
         normals: Cone {
             w: l.direction.normalize_or(Vec3::Z),
             cos_theta: inner.cos(),

@@ -7,7 +7,9 @@ use std::sync::Arc;
 use super::*;
 use crate::render::bsdf::luminance;
 use crate::sample::warp::concentric_disk;
-use crate::scene::{DiskLight, EnvMap, PointLight, RectLight, SphereLight, SpotLight};
+use crate::scene::{
+    DirectionalLight, DiskLight, EnvMap, PointLight, RectLight, SphereLight, SpotLight,
+};
 
 fn lights_only(lights: Vec<Light>, sampler: LightSampler) -> (Scene, LightSet) {
     let scene = Scene {
@@ -299,6 +301,39 @@ fn punctual_lights_irradiance_sums_their_closed_forms_by_power_and_by_bvh() {
     }
 }
 
+/// Inside its cone a spot lights a point as a point light of the same intensity does, however
+/// narrow the cone: the light BVH chooses the two alike there (the power sampler, by flux, does
+/// not).
+#[test]
+fn the_bvh_chooses_a_spot_as_a_point_light_of_its_intensity() {
+    for cos_outer in [0.5, 0.95, 0.999] {
+        let intensity = Vec3::new(3.0, 2.0, 1.0);
+        let lights = vec![
+            Light::Point(PointLight {
+                position: Vec3::new(-1.0, 2.0, 0.0),
+                intensity,
+            }),
+            Light::Spot(SpotLight {
+                position: Vec3::new(1.0, 2.0, 0.0),
+                direction: Vec3::new(-1.0, -2.0, 0.0).normalize(),
+                intensity,
+                cos_inner: (1.0 + cos_outer) / 2.0,
+                cos_outer,
+            }),
+        ];
+        let (_, set) = lights_only(lights, LightSampler::Bvh);
+        let ctx = LightContext {
+            p: Vec3::ZERO,
+            n: Vec3::Y,
+        };
+        let (point, spot) = (set.chooser.pmf(&ctx, 0), set.chooser.pmf(&ctx, 1));
+        assert!(
+            (point - 0.5).abs() < 1e-5 && (spot - 0.5).abs() < 1e-5,
+            "cos_outer {cos_outer}: point {point}, spot {spot}"
+        );
+    }
+}
+
 /// A 32 x 16 map: dark below the horizon, a sky gradient above, a small bright sun.
 fn sky_map() -> EnvMap {
     let (w, h) = (32, 16);
@@ -523,7 +558,7 @@ fn emissive_triangle_irradiance_matches_lambert_near_and_far() {
 }
 
 #[test]
-fn auto_takes_the_bvh_from_its_light_count_on() {
+fn auto_takes_the_bvh_from_its_count_of_bounded_lights_on() {
     let points = |n: usize| {
         (0..n)
             .map(|k| {
@@ -545,6 +580,17 @@ fn auto_takes_the_bvh_from_its_light_count_on() {
     assert!(!lights_only(points(AUTO_BVH_LIGHTS), LightSampler::Power)
         .1
         .uses_bvh());
+    // Lights at infinity are chosen beside the tree, so they do not count towards it.
+    let mut beside = points(AUTO_BVH_LIGHTS - 1);
+    beside.push(Light::Directional(DirectionalLight {
+        direction: -Vec3::Y,
+        irradiance: Vec3::ONE,
+    }));
+    beside.push(Light::Environment {
+        radiance: Vec3::ONE,
+        map: None,
+    });
+    assert!(!lights_only(beside, LightSampler::Auto).1.uses_bvh());
 }
 
 /// The mean and variance of one-sample estimates `e(u)` over a jittered 64 x 64 grid.
