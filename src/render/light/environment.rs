@@ -1,5 +1,8 @@
-//! Environments: radiance from every direction that leaves the scene, a constant or a lat-long map
-//! importance-sampled by luminance. Rays that escape find them; a constant one takes no light samples.
+//! Environments: radiance from every direction that leaves the scene, a constant or a lat-long map.
+//! Light samples take a map where it is brighter than its mean, in proportion to the excess (MIS
+//! compensation, Karlik et al. 2019, as pbrt-v4's): BSDF samples, which next-event estimation
+//! always weighs them against, find the rest as well as any light sample could. A constant
+//! environment (or map) takes no light samples.
 
 use std::f32::consts::PI;
 use std::sync::Arc;
@@ -13,50 +16,48 @@ use crate::scene::EnvMap;
 #[derive(Clone, Debug)]
 pub(super) struct Environment {
     radiance: Vec3,
-    /// The map and its importance-sampling distribution over lat-long coordinates (luminance
-    /// times sin(theta)); a constant environment is left to BSDF sampling.
-    map: Option<(Arc<EnvMap>, Distribution2D)>,
-    /// Mean luminance over the sphere of what light sampling sees (zero for a constant).
+    /// The map, and the distribution light samples take over its lat-long coordinates (`None`
+    /// where nothing is above the mean: a uniform map).
+    map: Option<(Arc<EnvMap>, Option<Distribution2D>)>,
+    /// Mean luminance over the sphere (a constant's too).
     mean: f32,
+    /// Mean over the sphere of the luminance above `mean`: what light samples are there for.
+    excess: f32,
 }
 
 impl Environment {
     pub fn new(radiance: Vec3, map: Option<&Arc<EnvMap>>) -> Self {
-        let (map, mean) = match map {
-            // A constant environment is sampled at least as well by the BSDF as by any light
-            // sample (its radiance is the same everywhere; pbrt-v4 does the same), so it takes no
-            // share of light samples: this lowered the default rig's error by about 10% at equal
-            // samples.
-            None => (None, 0.0),
+        let (map, mean, excess) = match map {
+            None => (None, luminance(radiance), 0.0),
             Some(m) => {
-                let (dist, mean) = distribution(m, radiance);
-                (Some((m.clone(), dist)), mean)
+                let (dist, mean, excess) = distribution(m, radiance);
+                (Some((m.clone(), dist)), mean, excess)
             }
         };
         Self {
             radiance,
             map,
             mean,
+            excess,
         }
     }
 
-    /// Mean luminance over the sphere of directions (a constant's too, which `mean` leaves out).
+    /// Mean luminance over the sphere of directions.
     pub fn mean_luminance(&self) -> f32 {
-        match self.map {
-            None => luminance(self.radiance),
-            Some(_) => self.mean,
-        }
+        self.mean
     }
 
-    /// The environment's weight among the lights: its flux through `far_disk`, the area of the
-    /// scene's bounding disk (irradiance on a plane is pi times the mean radiance over the sphere).
+    /// The environment's weight among the lights: the flux through `far_disk`, the area of the
+    /// scene's bounding disk, of the part light samples take (irradiance on a plane is pi times the
+    /// mean radiance over the sphere); zero where it takes none.
     pub fn power(&self, far_disk: f32) -> f32 {
-        far_disk * PI * self.mean
+        far_disk * PI * self.excess
     }
 
     pub fn sample(&self, u: Vec2, choice: f32) -> Option<LightSample> {
-        // Constant environments have no share of light samples (see `new`).
-        let (m, dist) = self.map.as_ref()?;
+        let (m, Some(dist)) = self.map.as_ref()? else {
+            return None;
+        };
         let (uv, pdf_uv) = dist.sample(u);
         let (wi, sin_theta) = m.uv_to_direction(uv);
         if sin_theta <= 0.0 || pdf_uv <= 0.0 {
@@ -82,11 +83,12 @@ impl Environment {
     }
 
     /// Radiance from unit direction `d`, and the solid-angle pdf (before the choice probability)
-    /// with which `sample` picks `d` (zero for a constant environment).
+    /// with which `sample` picks `d` (zero where it never does).
     pub fn radiance_and_pdf(&self, d: Vec3) -> (Vec3, f32) {
         match &self.map {
             None => (self.radiance, 0.0),
-            Some((m, dist)) => {
+            Some((m, None)) => (self.radiance * m.lookup(d), 0.0),
+            Some((m, Some(dist))) => {
                 let uv = m.direction_to_uv(d);
                 let sin_theta = (1.0 - (m.rotation.transpose() * d).y.powi(2))
                     .max(0.0)
@@ -109,22 +111,38 @@ fn solid_angle_pdf(pdf_uv: f32, sin_theta: f32) -> f32 {
     pdf_uv / (2.0 * PI * PI * sin_theta)
 }
 
-/// The importance-sampling distribution of an environment map (luminance of `scale` times the pixel,
-/// times sin(theta) for the lat-long area distortion) and the map's mean luminance over the sphere.
-fn distribution(m: &EnvMap, scale: Vec3) -> (Distribution2D, f32) {
-    let mut func = Vec::with_capacity(m.width * m.height);
-    let mut sum = 0.0f64;
+/// The distribution light samples take over an environment map (of radiance `scale` times the
+/// pixel): each pixel's luminance above the mean, times sin(theta) for the lat-long area
+/// distortion (`None` where no pixel is above it); the mean luminance over the sphere, and the
+/// mean of the excess. Both means weigh the pixels as the distribution does (sin(theta) at the row's
+/// centre), so a uniform map has no pixel above its mean; a pixel within 1e-5 of it counts as none
+/// (rounding would otherwise leave a uniform map a distribution of noise).
+fn distribution(m: &EnvMap, scale: Vec3) -> (Option<Distribution2D>, f32, f32) {
+    let sin_theta = |y: usize| (PI * (y as f32 + 0.5) / m.height as f32).sin();
+    let lum = |x: usize, y: usize| luminance(scale * m.pixels[y * m.width + x]).max(0.0);
+    let (mut sum, mut weight) = (0.0f64, 0.0f64);
     for y in 0..m.height {
-        let sin_theta = (PI * (y as f32 + 0.5) / m.height as f32).sin();
+        let s = sin_theta(y) as f64;
+        sum += (0..m.width).map(|x| lum(x, y) as f64).sum::<f64>() * s;
+        weight += s * m.width as f64;
+    }
+    let mean = if weight > 0.0 { sum / weight } else { 0.0 } as f32;
+    let mut func = Vec::with_capacity(m.width * m.height);
+    let mut excess = 0.0f64;
+    for y in 0..m.height {
+        let s = sin_theta(y);
         for x in 0..m.width {
-            let f = luminance(scale * m.pixels[y * m.width + x]).max(0.0) * sin_theta;
-            sum += f as f64;
+            let l = lum(x, y);
+            let f = if l > mean * (1.0 + 1e-5) {
+                (l - mean) * s
+            } else {
+                0.0
+            };
+            excess += f as f64;
             func.push(f);
         }
     }
-    // Integral over the sphere of luminance: sum f * (2 pi / w) * (pi / h); the mean divides by 4 pi.
-    let mean = sum * (2.0 * std::f64::consts::PI * std::f64::consts::PI)
-        / (m.width * m.height) as f64
-        / (4.0 * std::f64::consts::PI);
-    (Distribution2D::new(&func, m.width), mean as f32)
+    let dist = (excess > 0.0).then(|| Distribution2D::new(&func, m.width));
+    let excess = if weight > 0.0 { excess / weight } else { 0.0 };
+    (dist, mean, excess as f32)
 }

@@ -390,47 +390,12 @@ fn environment_map_pdf_integrates_to_one_and_matches_its_samples() {
     }
 }
 
-#[test]
-fn environment_irradiance_matches_closed_forms() {
-    let l = 0.8f32;
-    let constant_map = Arc::new(EnvMap::constant(16, 8, Vec3::ONE));
-    let e = irradiance(vec![Light::Environment {
-        radiance: Vec3::splat(l),
-        map: Some(constant_map),
-    }]);
-    assert_close(e, PI64 * l as f64, 0.01, "constant map");
-    // Without a map, all of it comes through BSDF sampling (it takes no light samples).
-    let e = irradiance(vec![Light::Environment {
-        radiance: Vec3::splat(l),
-        map: None,
-    }]);
-    assert_eq!(e[0], 0.0);
-    assert!(
-        (e[1] - PI64 * l as f64).abs() < 1e-4 && e[2] == e[1],
-        "{e:?}"
-    );
-    // Lit only above the horizon: still pi L on an upward plane; the sky and sun map agree
-    // between its own light sampling and BSDF sampling.
-    let upper = EnvMap::new(
-        8,
-        8,
-        (0..64)
-            .map(|i| Vec3::splat(if i < 32 { 1.0 } else { 0.0 }))
-            .collect(),
-    )
-    .unwrap();
-    let e = irradiance(vec![Light::Environment {
-        radiance: Vec3::splat(l),
-        map: Some(Arc::new(upper)),
-    }]);
-    assert_close(e, PI64 * l as f64, 0.01, "upper hemisphere");
-    let e = irradiance(vec![Light::Environment {
-        radiance: Vec3::ONE,
-        map: Some(Arc::new(sky_map())),
-    }]);
-    // Reference: the map integrated exactly, pixel by pixel (closed-form cos over each cell).
-    let m = sky_map();
-    let mut reference = 0.0f64;
+/// Irradiance on the plane facing +Y from a lat-long map whose pixels have luminance `lum`, by
+/// each row's closed-form integral of cos(theta) sin(theta), and the map's mean luminance over the
+/// sphere by each row's solid angle.
+fn map_irradiance(m: &EnvMap, lum: impl Fn(f64) -> f64) -> f64 {
+    let dphi = 2.0 * PI64 / m.width as f64;
+    let mut e = 0.0f64;
     for y in 0..m.height {
         let (t0, t1) = (
             y as f64 / m.height as f64 * PI64,
@@ -439,16 +404,71 @@ fn environment_irradiance_matches_closed_forms() {
         if t0 >= PI64 / 2.0 {
             continue;
         }
-        // Integral of cos(theta) sin(theta) dtheta over the row.
         let row = 0.5 * (t1.sin().powi(2) - t0.sin().powi(2));
         for x in 0..m.width {
-            let dphi = 2.0 * PI64 / m.width as f64;
-            reference += luminance(m.pixels[y * m.width + x]) as f64 * row * dphi;
+            e += lum(luminance(m.pixels[y * m.width + x]) as f64) * row * dphi;
         }
     }
+    e
+}
+
+fn map_mean(m: &EnvMap) -> f64 {
+    let dphi = 2.0 * PI64 / m.width as f64;
+    let mut sum = 0.0f64;
+    for y in 0..m.height {
+        let (t0, t1) = (
+            y as f64 / m.height as f64 * PI64,
+            (y + 1) as f64 / m.height as f64 * PI64,
+        );
+        for x in 0..m.width {
+            sum += luminance(m.pixels[y * m.width + x]) as f64 * (t0.cos() - t1.cos()) * dphi;
+        }
+    }
+    sum / (4.0 * PI64)
+}
+
+/// BSDF sampling and MIS find an environment's whole irradiance; light samples alone find only
+/// what comes from the pixels above the map's mean (MIS compensation), and none of a constant.
+#[test]
+fn environment_irradiance_matches_closed_forms() {
+    let l = 0.8f32;
+    let lit = |map: Option<EnvMap>, l: f32| {
+        irradiance(vec![Light::Environment {
+            radiance: Vec3::splat(l),
+            map: map.map(Arc::new),
+        }])
+    };
+    let whole = PI64 * l as f64;
+    for (what, map) in [
+        ("constant", None),
+        ("constant map", Some(EnvMap::constant(16, 8, Vec3::ONE))),
+    ] {
+        let e = lit(map, l);
+        assert_eq!(e[0], 0.0, "{what}: light samples");
+        assert!((e[1] - whole).abs() < 1e-4 && e[2] == e[1], "{what}: {e:?}");
+    }
+    // Lit only above the horizon: pi L on an upward plane, all of it from pixels above the mean.
+    let upper = EnvMap::new(
+        8,
+        8,
+        (0..64)
+            .map(|i| Vec3::splat(if i < 32 { 1.0 } else { 0.0 }))
+            .collect(),
+    )
+    .unwrap();
+    let e = lit(Some(upper), l);
+    assert!((e[0] - whole).abs() < 0.01 * whole, "upper: light {e:?}");
+    assert!((e[1] - whole).abs() < 0.01 * whole, "upper: BSDF {e:?}");
+    assert!((e[2] - whole).abs() < 0.01 * whole, "upper: MIS {e:?}");
+    // The sky and sun map, integrated exactly pixel by pixel.
+    let m = sky_map();
+    let e = lit(Some(sky_map()), 1.0);
+    let reference = map_irradiance(&m, |v| v);
+    let mean = map_mean(&m);
+    let above = map_irradiance(&m, |v| if v > mean { v } else { 0.0 });
     assert!(
-        (e[0] - reference).abs() < 0.01 * reference && (e[2] - reference).abs() < 0.01 * reference,
-        "sky: light {} MIS {} vs {reference}",
+        (e[0] - above).abs() < 0.01 * above && (e[2] - reference).abs() < 0.01 * reference,
+        "sky: light {} (from above the mean {above}) MIS {} vs {reference}",
         e[0],
         e[2]
     );
