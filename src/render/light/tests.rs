@@ -390,41 +390,37 @@ fn environment_map_pdf_integrates_to_one_and_matches_its_samples() {
     }
 }
 
-/// Irradiance on the plane facing +Y from a lat-long map whose pixels have luminance `lum`, by
-/// each row's closed-form integral of cos(theta) sin(theta), and the map's mean luminance over the
-/// sphere by each row's solid angle.
-fn map_irradiance(m: &EnvMap, lum: impl Fn(f64) -> f64) -> f64 {
-    let dphi = 2.0 * PI64 / m.width as f64;
-    let mut e = 0.0f64;
-    for y in 0..m.height {
-        let (t0, t1) = (
-            y as f64 / m.height as f64 * PI64,
-            (y + 1) as f64 / m.height as f64 * PI64,
-        );
-        if t0 >= PI64 / 2.0 {
-            continue;
-        }
-        let row = 0.5 * (t1.sin().powi(2) - t0.sin().powi(2));
-        for x in 0..m.width {
-            e += lum(luminance(m.pixels[y * m.width + x]) as f64) * row * dphi;
-        }
-    }
-    e
-}
-
-fn map_mean(m: &EnvMap) -> f64 {
+/// The sum over a lat-long map's pixels of `lum` of their luminance times `row` of their row's
+/// polar angles (theta0, theta1), times their width in phi.
+fn map_sum(m: &EnvMap, row: impl Fn(f64, f64) -> f64, lum: impl Fn(f64) -> f64) -> f64 {
     let dphi = 2.0 * PI64 / m.width as f64;
     let mut sum = 0.0f64;
     for y in 0..m.height {
-        let (t0, t1) = (
-            y as f64 / m.height as f64 * PI64,
-            (y + 1) as f64 / m.height as f64 * PI64,
-        );
+        let t = |k: usize| k as f64 / m.height as f64 * PI64;
+        let r = row(t(y), t(y + 1));
         for x in 0..m.width {
-            sum += luminance(m.pixels[y * m.width + x]) as f64 * (t0.cos() - t1.cos()) * dphi;
+            sum += lum(luminance(m.pixels[y * m.width + x]) as f64) * r * dphi;
         }
     }
-    sum / (4.0 * PI64)
+    sum
+}
+
+/// Irradiance on the plane facing +Y from a map whose pixels have luminance `lum`: each row's
+/// closed-form integral of cos(theta) sin(theta) above the horizon.
+fn map_irradiance(m: &EnvMap, lum: impl Fn(f64) -> f64) -> f64 {
+    let row = |t0: f64, t1: f64| {
+        if t0 >= PI64 / 2.0 {
+            0.0
+        } else {
+            0.5 * (t1.sin().powi(2) - t0.sin().powi(2))
+        }
+    };
+    map_sum(m, row, lum)
+}
+
+/// The map's mean luminance over the sphere, by each row's solid angle.
+fn map_mean(m: &EnvMap) -> f64 {
+    map_sum(m, |t0, t1| t0.cos() - t1.cos(), |v| v) / (4.0 * PI64)
 }
 
 /// BSDF sampling and MIS find an environment's whole irradiance; light samples alone find only
