@@ -129,17 +129,16 @@ pub struct LightSample {
 /// many-emitters cut to 16 / 32 / 48 small triangles 0.60 / 0.53 / 0.43; one rect light beside an
 /// environment (assets/scenes) 1.01-1.11, the same noise. (It took 64 before: session 16 measured
 /// the cut many-emitters 1.06-1.08x at 32, with the four-wide tree and before the spot's bound.)
+/// Session 8, sigma at equal spp, power -> bvh: many-emitters (1,200) 0.539 -> 0.456 at 1.17x the
+/// time per sample, DamagedHelmet (its emissive triangles) 0.505 -> 0.482.
 pub const AUTO_BVH_LIGHTS: usize = 2;
 
 /// How next-event estimation picks the light to sample.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
 pub enum LightSampler {
-    /// The BVH for scenes of at least `AUTO_BVH_LIGHTS` lights with bounds (all but directional
-    /// lights and environments; emissive triangles count one each, a rectangle of two one), power
-    /// below. Measured (session 8, sigma at equal spp, power -> bvh): many-emitters (1,200) 0.539
-    /// -> 0.456 at 1.17x the time per sample, 0.84x the time to a clean image; DamagedHelmet (its
-    /// emissive triangles) 0.505 -> 0.482 and EmissiveStrengthTest (60) 0.186 -> 0.117 at the
-    /// same time; bunny-cornell (2) equal. See `AUTO_BVH_LIGHTS` for where it switches.
+    /// The BVH where at least two lights are not at infinity (emissive triangles count one each,
+    /// a rectangle of two one; directional lights and environments are chosen beside it), power
+    /// otherwise.
     #[default]
     Auto,
     /// In proportion to power: blind to where the shading point is, O(1).
