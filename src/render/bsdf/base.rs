@@ -71,6 +71,32 @@ impl Bsdf {
         !self.thin && (self.eta - 1.0).abs() < 1e-3
     }
 
+    /// Whether the rough reflection and transmission lobes are chosen between at the sampled
+    /// microfacet (pbrt-v4's dielectric does this): both exist and are rough.
+    fn splits_at_microfacet(&self) -> bool {
+        self.alpha > 0.0 && self.transmits() && !self.index_matched()
+    }
+
+    /// Where `splits_at_microfacet`, the probability of reflecting rather than transmitting at a
+    /// microfacet of cosine `oh` with the view: each side's weight there, so a microfacet that
+    /// reflects totally always reflects. The macro surface's Fresnel, which chose between them
+    /// before, sent samples inside a rough sphere to refract where the microfacet reflects
+    /// totally, and those samples ended. TransmissionRoughnessTest under a uniform white map, 64
+    /// spp x 2 seeds: sigma 0.131 -> 0.092 (Cycles 0.101), mean the same; under a sky, 6 seeds,
+    /// past the 20 worst pixels 0.303 -> 0.286; 2-10% more time a sample (the paths go on).
+    fn reflect_share(&self, oh: f32) -> f32 {
+        let r = luminance(self.fresnel(oh));
+        let t = (1.0 - self.metallic)
+            * (1.0 - self.fresnel_dielectric(oh))
+            * self.transmission
+            * luminance(self.base);
+        if r + t > 0.0 {
+            r / (r + t)
+        } else {
+            1.0
+        }
+    }
+
     /// Fresnel reflectance of the dielectric layer (exact, scaled by the specular weight; total
     /// internal reflection reflects everything whatever the weight); with a specular colour, its
     /// strongest channel, which is what the layers below lose.
@@ -298,7 +324,12 @@ impl Bsdf {
                 f += self.fresnel(oh)
                     * self.reflection_compensation(o.z)
                     * (d * ggx.g2(o, i) / (4.0 * o.z * i.z));
-                pdf += lobes.reflect * ggx.g1(o) * d / (4.0 * o.z);
+                let chosen = if self.splits_at_microfacet() {
+                    (lobes.reflect + lobes.transmit) * self.reflect_share(oh)
+                } else {
+                    lobes.reflect
+                };
+                pdf += chosen * ggx.g1(o) * d / (4.0 * o.z);
             }
             return (f, pdf);
         }
@@ -354,7 +385,7 @@ impl Bsdf {
             if let Some(film) = film {
                 f *= film;
             }
-            let pdf = lobes.transmit * ggx.g1(o) * d / (4.0 * o.z);
+            let pdf = self.transmit_choice(lobes, o.dot(h)) * ggx.g1(o) * d / (4.0 * o.z);
             return (f, pdf);
         }
         // Rough dielectric refraction (Walter et al. 2007) as KHR_materials_volume writes it, with
@@ -377,8 +408,13 @@ impl Bsdf {
         if let Some(film) = film {
             f *= film;
         }
-        let pdf = lobes.transmit * ggx.g1(o) * d * oh / o.z * ih.abs() / denom;
+        let pdf = self.transmit_choice(lobes, oh) * ggx.g1(o) * d * oh / o.z * ih.abs() / denom;
         (f, pdf)
+    }
+
+    /// The probability of choosing the rough transmission lobe at a microfacet of cosine `oh`.
+    fn transmit_choice(&self, lobes: &Lobes, oh: f32) -> f32 {
+        (lobes.reflect + lobes.transmit) * (1.0 - self.reflect_share(oh))
     }
 
     /// Samples a direction: the reflection and transmission lobes through visible normals (or as
@@ -435,11 +471,26 @@ impl Bsdf {
             let i = refract(o, self.eta)?;
             return out(i, tint * (t / -i.z), lobes.transmit, true, false);
         }
+        // Between the rough reflection and transmission lobes: their probabilities together, then
+        // the microfacet's own share (the pick's leftover of u_lobe, uniform within the pair).
+        let (pick_reflect, pick_transmit, h) =
+            if (pick_reflect || pick_transmit) && self.splits_at_microfacet() {
+                let h = ggx.sample_vndf(o, u);
+                let within = if pick_reflect {
+                    u_lobe
+                } else {
+                    u_lobe - lobes.diffuse
+                } / (lobes.reflect + lobes.transmit);
+                let reflect = within < self.reflect_share(o.dot(h));
+                (reflect, !reflect, Some(h))
+            } else {
+                (pick_reflect, pick_transmit, None)
+            };
         let i = if pick_reflect {
-            let h = ggx.sample_vndf(o, u);
+            let h = h.unwrap_or_else(|| ggx.sample_vndf(o, u));
             2.0 * o.dot(h) * h - o
         } else if pick_transmit {
-            let h = ggx.sample_vndf(o, u);
+            let h = h.unwrap_or_else(|| ggx.sample_vndf(o, u));
             if self.thin {
                 let r = 2.0 * o.dot(h) * h - o;
                 Vec3::new(r.x, r.y, -r.z)
