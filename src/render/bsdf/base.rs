@@ -84,12 +84,11 @@ impl Bsdf {
     /// totally, and those samples ended. TransmissionRoughnessTest under a uniform white map, 64
     /// spp x 2 seeds: sigma 0.131 -> 0.092 (Cycles 0.101), mean the same; under a sky, 6 seeds,
     /// past the 20 worst pixels 0.303 -> 0.286; 2-10% more time a sample (the paths go on).
-    fn reflect_share(&self, oh: f32) -> f32 {
-        let r = luminance(self.fresnel(oh));
-        let t = (1.0 - self.metallic)
-            * (1.0 - self.fresnel_dielectric(oh))
-            * self.transmission
-            * luminance(self.base);
+    /// `fresnel` and `through` are the microfacet's `Bsdf::fresnel` and the dielectric's 1 - F
+    /// (`dielectric_through`), which the callers have computed for the lobes' values.
+    fn reflect_share(&self, fresnel: Vec3, through: f32) -> f32 {
+        let r = luminance(fresnel);
+        let t = (1.0 - self.metallic) * through * self.transmission * luminance(self.base);
         if r + t > 0.0 {
             r / (r + t)
         } else {
@@ -321,11 +320,13 @@ impl Bsdf {
             }
             if !smooth {
                 let d = ggx.d(h);
-                f += self.fresnel(oh)
+                let fresnel = self.fresnel(oh);
+                f += fresnel
                     * self.reflection_compensation(o.z)
                     * (d * ggx.g2(o, i) / (4.0 * o.z * i.z));
                 let chosen = if self.splits_at_microfacet() {
-                    (lobes.reflect + lobes.transmit) * self.reflect_share(oh)
+                    let through = self.dielectric_through(oh).0;
+                    (lobes.reflect + lobes.transmit) * self.reflect_share(fresnel, through)
                 } else {
                     lobes.reflect
                 };
@@ -380,12 +381,13 @@ impl Bsdf {
             let m = Vec3::new(i.x, i.y, -i.z);
             let h = (o + m).normalize();
             let d = ggx.d(h);
-            let (t, film) = self.dielectric_through(o.dot(h).max(0.0));
+            let oh = o.dot(h).max(0.0);
+            let (t, film) = self.dielectric_through(oh);
             let mut f = tint * (t * d * ggx.g2(o, m) / (4.0 * o.z * m.z));
             if let Some(film) = film {
                 f *= film;
             }
-            let pdf = self.transmit_choice(lobes, o.dot(h)) * ggx.g1(o) * d / (4.0 * o.z);
+            let pdf = self.transmit_choice(lobes, oh, t) * ggx.g1(o) * d / (4.0 * o.z);
             return (f, pdf);
         }
         // Rough dielectric refraction (Walter et al. 2007) as KHR_materials_volume writes it, with
@@ -408,13 +410,14 @@ impl Bsdf {
         if let Some(film) = film {
             f *= film;
         }
-        let pdf = self.transmit_choice(lobes, oh) * ggx.g1(o) * d * oh / o.z * ih.abs() / denom;
+        let pdf = self.transmit_choice(lobes, oh, t) * ggx.g1(o) * d * oh / o.z * ih.abs() / denom;
         (f, pdf)
     }
 
-    /// The probability of choosing the rough transmission lobe at a microfacet of cosine `oh`.
-    fn transmit_choice(&self, lobes: &Lobes, oh: f32) -> f32 {
-        (lobes.reflect + lobes.transmit) * (1.0 - self.reflect_share(oh))
+    /// The probability of choosing the rough transmission lobe at a microfacet of cosine `oh`,
+    /// through which the dielectric passes `through`.
+    fn transmit_choice(&self, lobes: &Lobes, oh: f32, through: f32) -> f32 {
+        (lobes.reflect + lobes.transmit) * (1.0 - self.reflect_share(self.fresnel(oh), through))
     }
 
     /// Samples a direction: the reflection and transmission lobes through visible normals (or as
@@ -481,7 +484,9 @@ impl Bsdf {
                 } else {
                     u_lobe - lobes.diffuse
                 } / (lobes.reflect + lobes.transmit);
-                let reflect = within < self.reflect_share(o.dot(h));
+                let oh = o.dot(h);
+                let through = self.dielectric_through(oh).0;
+                let reflect = within < self.reflect_share(self.fresnel(oh), through);
                 (reflect, !reflect, Some(h))
             } else {
                 (pick_reflect, pick_transmit, None)

@@ -94,8 +94,7 @@ impl Environment {
     /// with which `sample` picks `d` (zero where it never does).
     pub fn radiance_and_pdf(&self, d: Vec3) -> (Vec3, f32) {
         match &self.map {
-            None => (self.radiance, 0.0),
-            Some((m, None)) => (self.radiance * m.lookup(d), 0.0),
+            None | Some((_, None)) => (self.radiance(d), 0.0),
             Some((m, Some(dist))) => {
                 let uv = m.direction_to_uv(d);
                 let sin_theta = (1.0 - (m.rotation.transpose() * d).y.powi(2))
@@ -126,31 +125,33 @@ fn solid_angle_pdf(pdf_uv: f32, sin_theta: f32) -> f32 {
 /// centre), so a uniform map has no pixel above its mean; a pixel within 1e-5 of it counts as none
 /// (rounding would otherwise leave a uniform map a distribution of noise).
 fn distribution(m: &EnvMap, scale: Vec3) -> (Option<Distribution2D>, f32, f32) {
-    let sin_theta = |y: usize| (PI * (y as f32 + 0.5) / m.height as f32).sin();
-    let lum = |x: usize, y: usize| luminance(scale * m.pixels[y * m.width + x]).max(0.0);
+    let sin_theta: Vec<f32> = (0..m.height)
+        .map(|y| (PI * (y as f32 + 0.5) / m.height as f32).sin())
+        .collect();
+    // Each pixel's luminance, then in place its excess over the mean times sin(theta).
+    let mut func: Vec<f32> = m
+        .pixels
+        .iter()
+        .map(|&p| luminance(scale * p).max(0.0))
+        .collect();
     let (mut sum, mut weight) = (0.0f64, 0.0f64);
-    for y in 0..m.height {
-        let s = sin_theta(y) as f64;
-        sum += (0..m.width).map(|x| lum(x, y) as f64).sum::<f64>() * s;
-        weight += s * m.width as f64;
+    for (row, &s) in func.chunks(m.width).zip(&sin_theta) {
+        sum += row.iter().map(|&l| l as f64).sum::<f64>() * s as f64;
+        weight += s as f64 * m.width as f64;
     }
-    let mean = if weight > 0.0 { sum / weight } else { 0.0 } as f32;
-    let mut func = Vec::with_capacity(m.width * m.height);
+    // Every row's sin(theta) is positive and a map has pixels (`EnvMap::new`), so weight is too.
+    let mean = (sum / weight) as f32;
     let mut excess = 0.0f64;
-    for y in 0..m.height {
-        let s = sin_theta(y);
-        for x in 0..m.width {
-            let l = lum(x, y);
-            let f = if l > mean * (1.0 + 1e-5) {
-                (l - mean) * s
+    for (row, &s) in func.chunks_mut(m.width).zip(&sin_theta) {
+        for f in row {
+            *f = if *f > mean * (1.0 + 1e-5) {
+                (*f - mean) * s
             } else {
                 0.0
             };
-            excess += f as f64;
-            func.push(f);
+            excess += *f as f64;
         }
     }
     let dist = (excess > 0.0).then(|| Distribution2D::new(&func, m.width));
-    let excess = if weight > 0.0 { excess / weight } else { 0.0 };
-    (dist, mean, excess as f32)
+    (dist, mean, (excess / weight) as f32)
 }

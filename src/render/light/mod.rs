@@ -283,13 +283,13 @@ impl LightSet {
                 }
             }
         }
-        let bounded = || {
-            (entries.iter().zip(&weights))
-                .filter(|&(e, &w)| w > 0.0 && e.bounds(w).is_some())
-                .count()
-        };
         let bvh = match sampler {
-            LightSampler::Auto => bounded() >= AUTO_BVH_LIGHTS,
+            LightSampler::Auto => {
+                let bounded = (entries.iter().zip(&weights))
+                    .filter(|&(e, &w)| w > 0.0 && e.bounds(w).is_some())
+                    .count();
+                bounded >= AUTO_BVH_LIGHTS
+            }
             LightSampler::Power => false,
             LightSampler::Bvh => true,
         };
